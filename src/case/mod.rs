@@ -1,0 +1,119 @@
+//! Case files: TOML, SI units, unknown keys rejected, every rule checked before a run starts.
+//!
+//! A case is read into a TOML table, `--set KEY=VALUE` overrides are applied to that table, and
+//! only then is it deserialized and validated, so overrides pass through exactly the same
+//! checks as the file.
+
+pub mod overrides;
+pub mod spec;
+
+use std::fmt;
+use std::path::Path;
+
+pub use spec::*;
+
+use crate::validate::{Checker, Violation};
+
+/// Why a case could not be used. Every variant is the user's input (exit code 2).
+#[derive(Debug)]
+pub enum CaseError {
+    /// The file could not be read.
+    Io { path: String, message: String },
+    /// Not TOML, or not the shape of a case (missing, unknown or mistyped keys).
+    Parse(String),
+    /// A `--set` argument is malformed or names no key.
+    Override(String),
+    /// Parsed, but values break rules.
+    Invalid(Vec<Violation>),
+}
+
+impl fmt::Display for CaseError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CaseError::Io { path, message } => write!(f, "cannot read case file {path}: {message}"),
+            CaseError::Parse(message) => write!(f, "{message}"),
+            CaseError::Override(message) => write!(f, "{message}"),
+            CaseError::Invalid(violations) => {
+                for (i, v) in violations.iter().enumerate() {
+                    if i > 0 {
+                        writeln!(f)?;
+                    }
+                    write!(f, "{v}")?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+impl std::error::Error for CaseError {}
+
+/// Reads, overrides, parses and validates a case file.
+pub fn load(path: &Path, overrides: &[String]) -> Result<Case, CaseError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CaseError::Io { path: path.display().to_string(), message: e.to_string() })?;
+    from_str(&text, overrides)
+}
+
+/// As [`load`], from text.
+pub fn from_str(text: &str, overrides: &[String]) -> Result<Case, CaseError> {
+    let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| CaseError::Parse(e.to_string()))?;
+    for item in overrides {
+        overrides::apply(&mut table, item)?;
+    }
+    let case: Case = if overrides.is_empty() {
+        // Deserializing the text keeps line and column in the error message.
+        deserialize(toml::Deserializer::parse(text).map_err(|e| CaseError::Parse(e.to_string()))?)?
+    } else {
+        deserialize(table)?
+    };
+    let violations = case.violations();
+    if violations.is_empty() { Ok(case) } else { Err(CaseError::Invalid(violations)) }
+}
+
+fn deserialize<'de, D>(deserializer: D) -> Result<Case, CaseError>
+where
+    D: serde::Deserializer<'de>,
+    D::Error: fmt::Display,
+{
+    serde_path_to_error::deserialize(deserializer).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner().to_string();
+        let inner = inner.trim_end();
+        if path == "." || path.is_empty() {
+            CaseError::Parse(format!("case: {inner}"))
+        } else {
+            CaseError::Parse(format!("{path}: {inner}"))
+        }
+    })
+}
+
+impl Case {
+    /// Every broken rule, with its key.
+    pub fn violations(&self) -> Vec<Violation> {
+        let mut all = Vec::new();
+        let mut friction = Checker::new("friction");
+        self.friction.check(&mut friction);
+        all.extend(friction.violations);
+        let mut time = Checker::new("time");
+        self.time.check(&mut time);
+        all.extend(time.violations);
+        let mut scene = Checker::new("scene");
+        self.scene.check(&mut scene);
+        all.extend(scene.violations);
+        let mut events = Checker::new("events");
+        if let Some(threshold) = self.events.slip_rate_threshold {
+            events.positive("slip_rate_threshold", threshold);
+        }
+        all.extend(events.violations);
+        let mut probes = Checker::new("probes");
+        self.probes.check(&self.scene, &mut probes);
+        all.extend(probes.violations);
+        all
+    }
+
+    /// Slip-rate threshold of the event catalog: given, or 10 × the driving velocity.
+    pub fn slip_rate_threshold(&self) -> f64 {
+        self.events.slip_rate_threshold.unwrap_or(10.0 * self.scene.driving_velocity())
+    }
+}

@@ -1,0 +1,326 @@
+//! The shape of a case file. All quantities SI: Pa, m, s, kg.
+
+use serde::Deserialize;
+
+use crate::friction::FrictionParams;
+use crate::validate::Checker;
+
+/// A whole case.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Case {
+    /// The friction law's constants.
+    pub friction: FrictionParams,
+    /// Time span and integrator.
+    pub time: TimeSpec,
+    /// What is simulated.
+    pub scene: SceneSpec,
+    /// The event catalog.
+    #[serde(default)]
+    pub events: EventsSpec,
+    /// Named nodes and segments (block scenes).
+    #[serde(default)]
+    pub probes: ProbesSpec,
+}
+
+/// `[time]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeSpec {
+    /// Simulated time (s).
+    pub t_end: f64,
+    /// Time step (s).
+    pub dt: f64,
+    /// Wilson's θ (-); 1.4 by default, at least 1.37 for unconditional stability.
+    #[serde(default = "default_theta")]
+    pub theta: f64,
+}
+
+fn default_theta() -> f64 {
+    1.4
+}
+
+/// Most steps a run may take, to refuse a typo such as `dt = 1e-12` before it starts.
+pub const MAX_STEPS: f64 = 1e9;
+
+impl TimeSpec {
+    pub fn check(&self, c: &mut Checker<'_>) {
+        c.positive("t_end", self.t_end);
+        c.positive("dt", self.dt);
+        if c.finite("theta", self.theta) && !(1.37..=3.0).contains(&self.theta) {
+            c.fail(
+                "theta",
+                self.theta,
+                "must lie in [1.37, 3] (Wilson's method is unconditionally stable for θ ≥ 1.37)",
+            );
+        }
+        if self.t_end.is_finite() && self.dt.is_finite() && self.dt > 0.0 && self.t_end > 0.0 {
+            if self.dt > self.t_end {
+                c.fail("dt", self.dt, format!("must not exceed {} = {}", c.key("t_end"), self.t_end));
+            } else if self.t_end / self.dt > MAX_STEPS {
+                c.fail(
+                    "dt",
+                    self.dt,
+                    format!(
+                        "gives {:.3e} steps for {} = {} s; at most {MAX_STEPS:e} are allowed",
+                        self.t_end / self.dt,
+                        c.key("t_end"),
+                        self.t_end
+                    ),
+                );
+            }
+        }
+    }
+
+    /// Number of steps: `t_end/dt` rounded up; the last step is shortened to end at `t_end`.
+    pub fn steps(&self) -> u64 {
+        (self.t_end / self.dt - 1e-9).ceil().max(1.0) as u64
+    }
+}
+
+/// `[scene]`, chosen by `kind`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum SceneSpec {
+    /// One contact point under a prescribed relative sliding velocity history.
+    Point(PointSpec),
+    /// A rigid block on the frictional contact, pulled through a spring.
+    SpringBlock(SpringBlockSpec),
+    /// The plane-strain elastic block of the paper on the frictional base.
+    Block(BlockSpec),
+}
+
+/// `kind = "point"`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointSpec {
+    /// Normal traction `f_n` (Pa).
+    pub normal_traction: f64,
+    /// Relative sliding velocity `v̄_t = v_block - v_base` (m/s) held for `duration` (s), in
+    /// order; after the last phase the point is held (`v̄_t = 0`).
+    pub phases: Vec<Phase>,
+}
+
+/// One phase of a point history.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Phase {
+    /// Relative sliding velocity (m/s).
+    pub velocity: f64,
+    /// Duration (s).
+    pub duration: f64,
+}
+
+/// `kind = "spring_block"`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpringBlockSpec {
+    /// Block mass per unit contact area (kg/m²).
+    pub mass: f64,
+    /// Spring stiffness per unit contact area (Pa/m).
+    pub stiffness: f64,
+    /// Velocity of the spring's far end (m/s).
+    pub velocity: f64,
+    /// Normal traction on the contact `σ_n` (Pa).
+    pub normal_traction: f64,
+}
+
+/// `kind = "block"`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BlockSpec {
+    /// Width `W` (m).
+    pub width: f64,
+    /// Height `H` (m).
+    pub height: f64,
+    /// Elements along x.
+    pub nx: usize,
+    /// Elements along y.
+    pub ny: usize,
+    /// Young's modulus `E` (Pa).
+    pub youngs_modulus: f64,
+    /// Poisson's ratio `ν` (-).
+    pub poisson_ratio: f64,
+    /// Density `ρ` (kg/m³).
+    pub density: f64,
+    /// Velocity of the base along x (m/s).
+    pub base_velocity: f64,
+    /// Normal traction on the contact, held constant (Pa).
+    pub normal_traction: NormalTractionSpec,
+}
+
+/// Normal traction along the contact.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum NormalTractionSpec {
+    /// The same everywhere.
+    Uniform { value: f64 },
+    /// Linear from `left` (x = 0) to `right` (x = W): the paper's triangle.
+    Linear { left: f64, right: f64 },
+    /// Piecewise linear through `(x[i], value[i])`, `x` increasing from 0 to W.
+    Table { x: Vec<f64>, value: Vec<f64> },
+}
+
+impl NormalTractionSpec {
+    /// The traction at `x` (Pa) on a contact of width `width`.
+    pub fn at(&self, x: f64, width: f64) -> f64 {
+        match self {
+            NormalTractionSpec::Uniform { value } => *value,
+            NormalTractionSpec::Linear { left, right } => left + (right - left) * (x / width),
+            NormalTractionSpec::Table { x: xs, value } => {
+                let k = xs.partition_point(|&xi| xi <= x).clamp(1, xs.len() - 1);
+                let (x0, x1, v0, v1) = (xs[k - 1], xs[k], value[k - 1], value[k]);
+                v0 + (v1 - v0) * (x - x0) / (x1 - x0)
+            }
+        }
+    }
+
+    fn check(&self, width: f64, c: &mut Checker<'_>) {
+        match self {
+            NormalTractionSpec::Uniform { value } => c.non_negative("normal_traction.value", *value),
+            NormalTractionSpec::Linear { left, right } => {
+                c.non_negative("normal_traction.left", *left);
+                c.non_negative("normal_traction.right", *right);
+            }
+            NormalTractionSpec::Table { x, value } => {
+                if x.len() < 2 || x.len() != value.len() {
+                    c.fail(
+                        "normal_traction.x",
+                        format!("{x:?}"),
+                        format!(
+                            "must have at least 2 entries, as many as {} ({})",
+                            c.key("normal_traction.value"),
+                            value.len()
+                        ),
+                    );
+                    return;
+                }
+                for (i, v) in value.iter().enumerate() {
+                    c.non_negative(&format!("normal_traction.value[{i}]"), *v);
+                }
+                let increasing = x.windows(2).all(|w| w[1] > w[0]);
+                if !x.iter().all(|v| v.is_finite()) || !increasing {
+                    c.fail("normal_traction.x", format!("{x:?}"), "must be finite and strictly increasing");
+                } else if x[0] > 0.0 || x[x.len() - 1] < width {
+                    c.fail(
+                        "normal_traction.x",
+                        format!("{x:?}"),
+                        format!("must cover the contact, from 0 to {} = {width} m", c.key("width")),
+                    );
+                }
+            }
+        }
+    }
+}
+
+impl SceneSpec {
+    pub fn kind(&self) -> &'static str {
+        match self {
+            SceneSpec::Point(_) => "point",
+            SceneSpec::SpringBlock(_) => "spring_block",
+            SceneSpec::Block(_) => "block",
+        }
+    }
+
+    /// The velocity that drives the scene (m/s): 10 × this is the default event threshold.
+    pub fn driving_velocity(&self) -> f64 {
+        let v = match self {
+            SceneSpec::Point(p) => p.phases.iter().fold(0.0_f64, |m, ph| m.max(ph.velocity.abs())),
+            SceneSpec::SpringBlock(s) => s.velocity.abs(),
+            SceneSpec::Block(b) => b.base_velocity.abs(),
+        };
+        if v > 0.0 && v.is_finite() { v } else { 1e-3 }
+    }
+
+    pub fn check(&self, c: &mut Checker<'_>) {
+        match self {
+            SceneSpec::Point(p) => {
+                c.non_negative("normal_traction", p.normal_traction);
+                if p.phases.is_empty() {
+                    c.fail("phases", "[]", "must list at least one {velocity, duration} phase");
+                }
+                for (i, phase) in p.phases.iter().enumerate() {
+                    c.finite(&format!("phases[{i}].velocity"), phase.velocity);
+                    c.positive(&format!("phases[{i}].duration"), phase.duration);
+                }
+            }
+            SceneSpec::SpringBlock(s) => {
+                c.positive("mass", s.mass);
+                c.positive("stiffness", s.stiffness);
+                c.finite("velocity", s.velocity);
+                c.non_negative("normal_traction", s.normal_traction);
+            }
+            SceneSpec::Block(b) => {
+                c.positive("width", b.width);
+                c.positive("height", b.height);
+                if b.nx == 0 {
+                    c.fail("nx", b.nx, "must be at least 1");
+                }
+                if b.ny == 0 {
+                    c.fail("ny", b.ny, "must be at least 1");
+                }
+                c.positive("youngs_modulus", b.youngs_modulus);
+                if c.finite("poisson_ratio", b.poisson_ratio) && !(0.0..0.5).contains(&b.poisson_ratio) {
+                    c.fail("poisson_ratio", b.poisson_ratio, "must lie in [0, 0.5)");
+                }
+                c.positive("density", b.density);
+                c.finite("base_velocity", b.base_velocity);
+                b.normal_traction.check(b.width, c);
+            }
+        }
+    }
+}
+
+/// `[events]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EventsSpec {
+    /// A segment slips while its plastic slip rate exceeds this (m/s); default 10 × the
+    /// driving velocity.
+    pub slip_rate_threshold: Option<f64>,
+}
+
+/// `[probes]`: names for nodes and segments of a block, so that figures and recordings can
+/// say "Node 1" or "Segment A" as the paper does.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProbesSpec {
+    /// Contact-surface nodes, numbered from 0 at the left.
+    #[serde(default)]
+    pub nodes: Vec<Probe>,
+    /// Contact segments (bottom element edges), numbered from 0 at the left.
+    #[serde(default)]
+    pub segments: Vec<Probe>,
+}
+
+/// One named probe.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Probe {
+    pub name: String,
+    pub index: usize,
+}
+
+impl ProbesSpec {
+    pub fn check(&self, scene: &SceneSpec, c: &mut Checker<'_>) {
+        let (nodes, segments) = match scene {
+            SceneSpec::Block(b) => (b.nx + 1, b.nx),
+            _ => (0, 1),
+        };
+        for (list, key, count) in [(&self.nodes, "nodes", nodes), (&self.segments, "segments", segments)] {
+            for (i, probe) in list.iter().enumerate() {
+                if probe.index >= count {
+                    let rule = if count == 0 {
+                        format!("is not allowed: a {} scene has no nodes", scene.kind())
+                    } else {
+                        format!("must be below {count} (the scene has {count} {key}, numbered from 0 at the left)")
+                    };
+                    c.fail(&format!("{key}[{i}].index"), probe.index, rule);
+                }
+                if probe.name.trim().is_empty() {
+                    c.fail(&format!("{key}[{i}].name"), format!("{:?}", probe.name), "must not be empty");
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,143 @@
+//! The command line: `slipfront run CASE.toml ...`.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
+
+use clap::{Args, Parser, Subcommand};
+
+use crate::case;
+use crate::run::{LoopOptions, Outcome, run};
+use crate::scene;
+use crate::sink::Sink;
+use crate::sink::catalog::CatalogSink;
+
+/// Exit code for invalid input (case, arguments, output folder).
+pub const EXIT_INVALID: u8 = 2;
+/// Exit code for a failure during the run.
+pub const EXIT_FAILED: u8 = 1;
+/// Exit code after Ctrl-C or SIGTERM (128 + SIGINT).
+pub const EXIT_INTERRUPTED: u8 = 130;
+
+/// Frictional stick-slip with the super/subloading surface friction model: a dynamic finite
+/// element solver whose contact follows Yasuike & Toyoda's model, with an event catalog of
+/// every slip.
+#[derive(Debug, Parser)]
+#[command(name = "slipfront", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run a case file and write its event catalog (and recordings) to the output folder.
+    ///
+    /// Exit codes: 0 success, 1 the run failed (the outputs hold everything up to the last good
+    /// step), 2 invalid input, 130 interrupted (outputs finished up to the last step).
+    Run(RunArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    /// The case file (TOML, SI units; see cases/ and the README).
+    pub case: PathBuf,
+    /// Override a case key, e.g. --set time.t_end=50 or --set friction.rstar_law=eq4.
+    /// Repeatable; checked by the same rules as the file.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub overrides: Vec<String>,
+    /// Folder for every output (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "recordings")]
+    pub out_dir: PathBuf,
+    /// Path of the slip-event CSV [default: <out-dir>/<case-stem>.events.csv]; a block's
+    /// rupture CSV goes beside it as <stem>.ruptures.csv.
+    #[arg(long, value_name = "PATH")]
+    pub events: Option<PathBuf>,
+    /// Print nothing but errors: no progress bar, no summary.
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// Runs the command line and returns the process exit code.
+pub fn main_with(cli: Cli) -> ExitCode {
+    match cli.command {
+        Command::Run(args) => run_command(args),
+    }
+}
+
+fn fail(code: u8, message: impl std::fmt::Display) -> ExitCode {
+    eprintln!("slipfront: {message}");
+    ExitCode::from(code)
+}
+
+fn run_command(args: RunArgs) -> ExitCode {
+    let case = match case::load(&args.case, &args.overrides) {
+        Ok(case) => case,
+        Err(e) => return fail(EXIT_INVALID, format!("{}: {e}", args.case.display())),
+    };
+    let stem = args.case.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "case".into());
+    if let Err(e) = std::fs::create_dir_all(&args.out_dir) {
+        return fail(EXIT_INVALID, format!("cannot create output folder {}: {e}", args.out_dir.display()));
+    }
+    if let Err(e) = check_writable(&args.out_dir) {
+        return fail(EXIT_INVALID, format!("output folder {} is not writable: {e}", args.out_dir.display()));
+    }
+    let events_path = args.events.clone().unwrap_or_else(|| args.out_dir.join(format!("{stem}.events.csv")));
+    let ruptures_path = ruptures_path_for(&events_path);
+    let mut scene = match scene::build(&case) {
+        Ok(scene) => scene,
+        Err(e) => return fail(EXIT_FAILED, e),
+    };
+    let mut sinks: Vec<Box<dyn Sink>> =
+        vec![Box::new(CatalogSink::new(events_path.clone(), Some(ruptures_path.clone()), case.slip_rate_threshold()))];
+    let interrupt = Arc::new(AtomicBool::new(false));
+    {
+        let flag = interrupt.clone();
+        // A second handler cannot be installed in tests that call this twice; that is harmless.
+        let _ = ctrlc::set_handler(move || flag.store(true, std::sync::atomic::Ordering::SeqCst));
+    }
+    let outcome =
+        run(scene.as_mut(), &case.time, &mut sinks, LoopOptions { progress: !args.quiet, interrupt: Some(&interrupt) });
+    let is_block = scene.layout().kind == "block";
+    let written = if is_block {
+        format!("{} and {}", events_path.display(), ruptures_path.display())
+    } else {
+        events_path.display().to_string()
+    };
+    match outcome {
+        Outcome::Completed { steps, wall } => {
+            if !args.quiet {
+                println!(
+                    "slipfront: {} ({}): {steps} steps to t = {} s in {:.2} s; catalog {written}",
+                    args.case.display(),
+                    case.scene.kind(),
+                    case.time.t_end,
+                    wall.as_secs_f64()
+                );
+            }
+            ExitCode::SUCCESS
+        }
+        Outcome::Interrupted { steps } => fail(
+            EXIT_INTERRUPTED,
+            format!("interrupted after {steps} steps (t = {} s); outputs finished: {written}", scene.time()),
+        ),
+        Outcome::Failed(error) => {
+            fail(EXIT_FAILED, format!("run failed at {error}; outputs hold every step before it: {written}"))
+        }
+        Outcome::Sink(error) => fail(EXIT_FAILED, error),
+    }
+}
+
+/// `<dir>/<x>.ruptures.csv` beside `<dir>/<x>.events.csv` (or `<stem>.ruptures.csv`).
+fn ruptures_path_for(events: &Path) -> PathBuf {
+    let name = events.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let stem = name.strip_suffix(".events.csv").or_else(|| name.strip_suffix(".csv")).unwrap_or(&name);
+    events.with_file_name(format!("{stem}.ruptures.csv"))
+}
+
+fn check_writable(dir: &Path) -> std::io::Result<()> {
+    let probe = dir.join(format!(".slipfront-write-test-{}", std::process::id()));
+    std::fs::write(&probe, b"")?;
+    std::fs::remove_file(&probe)
+}

@@ -1,0 +1,10 @@
+//! Time integration of a linear elastic body with a frictional contact boundary (paper §2.2).
+
+pub mod body;
+pub mod contact;
+pub mod sparse;
+pub mod wilson;
+
+pub use body::LinearBody;
+pub use contact::{ContactBoundary, ContactPoint};
+pub use wilson::{Dynamics, EnergyLedger, State, StepError, WilsonSettings};

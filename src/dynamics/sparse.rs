@@ -1,0 +1,163 @@
+//! A symmetric sparse matrix with a fixed pattern, and its Cholesky factorization by `faer`.
+//!
+//! The pattern (both triangles, CSC) is built once from the element connectivity; values are
+//! refilled in place. The symbolic factorization is computed once and reused for every
+//! numeric refactorization.
+
+use faer::Side;
+use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+
+/// Symmetric matrix stored with both triangles in compressed sparse columns.
+#[derive(Debug, Clone)]
+pub struct SymmetricMatrix {
+    pattern: SymbolicSparseColMat<usize>,
+    values: Vec<f64>,
+}
+
+impl SymmetricMatrix {
+    /// Builds the matrix from `(row, col, value)` triplets; duplicates are summed. Each off-
+    /// diagonal entry must be given for both triangles (as element assembly naturally does).
+    pub fn from_triplets(n: usize, triplets: &[(usize, usize, f64)]) -> Self {
+        let mut counts = vec![0usize; n + 1];
+        let mut sorted: Vec<(usize, usize, f64)> = triplets.to_vec();
+        sorted.sort_unstable_by_key(|&(i, j, _)| (j, i));
+        let mut row_idx = Vec::with_capacity(sorted.len());
+        let mut values: Vec<f64> = Vec::with_capacity(sorted.len());
+        let mut last: Option<(usize, usize)> = None;
+        for (i, j, v) in sorted {
+            assert!(i < n && j < n, "triplet ({i}, {j}) outside a {n}x{n} matrix");
+            if last == Some((i, j)) {
+                *values.last_mut().expect("a previous entry") += v;
+            } else {
+                row_idx.push(i);
+                values.push(v);
+                counts[j + 1] += 1;
+                last = Some((i, j));
+            }
+        }
+        for j in 0..n {
+            counts[j + 1] += counts[j];
+        }
+        let pattern = SymbolicSparseColMat::new_checked(n, n, counts, None, row_idx);
+        Self { pattern, values }
+    }
+
+    /// Dimension.
+    pub fn size(&self) -> usize {
+        self.pattern.nrows()
+    }
+
+    /// Stored values, in pattern order.
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    /// Mutable stored values, in pattern order.
+    pub fn values_mut(&mut self) -> &mut [f64] {
+        &mut self.values
+    }
+
+    /// Index into [`Self::values`] of entry `(i, j)`, if it is in the pattern.
+    pub fn position(&self, i: usize, j: usize) -> Option<usize> {
+        let start = self.pattern.col_ptr()[j];
+        let end = self.pattern.col_ptr()[j + 1];
+        self.pattern.row_idx()[start..end].binary_search(&i).ok().map(|k| start + k)
+    }
+
+    /// Every stored entry as `(row, col, value)`.
+    pub fn entries(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+        let col_ptr = self.pattern.col_ptr();
+        let row_idx = self.pattern.row_idx();
+        (0..self.size()).flat_map(move |j| (col_ptr[j]..col_ptr[j + 1]).map(move |k| (row_idx[k], j, self.values[k])))
+    }
+
+    /// `y = A x`.
+    pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
+        y.iter_mut().for_each(|v| *v = 0.0);
+        let col_ptr = self.pattern.col_ptr();
+        let row_idx = self.pattern.row_idx();
+        for (j, &xj) in x.iter().enumerate() {
+            if xj == 0.0 {
+                continue;
+            }
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                y[row_idx[k]] += self.values[k] * xj;
+            }
+        }
+    }
+
+    /// `xᵀ A x`.
+    pub fn quadratic_form(&self, x: &[f64]) -> f64 {
+        let col_ptr = self.pattern.col_ptr();
+        let row_idx = self.pattern.row_idx();
+        let mut sum = 0.0;
+        for (j, &xj) in x.iter().enumerate() {
+            let mut column = 0.0;
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                column += self.values[k] * x[row_idx[k]];
+            }
+            sum += xj * column;
+        }
+        sum
+    }
+
+    fn as_faer(&self) -> SparseColMatRef<'_, usize, f64> {
+        SparseColMatRef::new(self.pattern.as_ref(), &self.values)
+    }
+}
+
+/// Why a factorization failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FactorError {
+    /// The matrix is not positive definite (e.g. strongly softening contact tangents).
+    NotPositiveDefinite,
+    /// Memory could not be allocated.
+    OutOfMemory,
+}
+
+impl std::fmt::Display for FactorError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FactorError::NotPositiveDefinite => write!(f, "the step's operator is not positive definite"),
+            FactorError::OutOfMemory => write!(f, "out of memory while factoring the step's operator"),
+        }
+    }
+}
+
+impl std::error::Error for FactorError {}
+
+/// Sparse Cholesky factorization `A = L Lᵀ` of a [`SymmetricMatrix`], symbolic part reused.
+pub struct Cholesky {
+    symbolic: SymbolicLlt<usize>,
+    numeric: Option<Llt<usize, f64>>,
+}
+
+impl Cholesky {
+    /// Analyzes the pattern of `matrix` (fill-reducing ordering, elimination tree) once.
+    pub fn analyze(matrix: &SymmetricMatrix) -> Result<Self, FactorError> {
+        let symbolic =
+            SymbolicLlt::try_new(matrix.pattern.as_ref(), Side::Lower).map_err(|_| FactorError::OutOfMemory)?;
+        Ok(Self { symbolic, numeric: None })
+    }
+
+    /// Numeric factorization of `matrix`, which must have the analyzed pattern.
+    pub fn factor(&mut self, matrix: &SymmetricMatrix) -> Result<(), FactorError> {
+        self.numeric = None;
+        let llt =
+            Llt::try_new_with_symbolic(self.symbolic.clone(), matrix.as_faer(), Side::Lower).map_err(|e| match e {
+                faer::sparse::linalg::LltError::Numeric(_) => FactorError::NotPositiveDefinite,
+                faer::sparse::linalg::LltError::Generic(_) => FactorError::OutOfMemory,
+            })?;
+        self.numeric = Some(llt);
+        Ok(())
+    }
+
+    /// Solves `A x = b` in place (`rhs` holds `b` on entry, `x` on exit).
+    pub fn solve_in_place(&self, rhs: &mut [f64]) {
+        let llt = self.numeric.as_ref().expect("factor() must succeed before solve_in_place()");
+        let n = rhs.len();
+        llt.solve_in_place(faer::MatMut::from_column_major_slice_mut(rhs, n, 1));
+    }
+}

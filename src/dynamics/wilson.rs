@@ -1,0 +1,437 @@
+//! Wilson's θ method for the equation of motion (14) of the paper's §2.2.
+//!
+//! The paper integrates the *rate* form `M v̈ + (K - K_c) v = ḟ⁰ + ḟᶜ` with a linear jerk over
+//! `τ = θ Δt`. For a linear system that scheme has exactly the eigenvalues of Wilson's method on
+//! the *total* form `M a + K u = f⁰ + f_c` with a linear acceleration, plus one extra eigenvalue
+//! equal to 1: the integration constant of the rate equation, which nothing damps. A velocity
+//! jump (the base starting at `t = 0`) or a damped transient leaves a permanent equilibrium
+//! offset in that mode (measured: -211 N/m on a stuck contact whose force should be 50 N/m), and
+//! feeding the offset back makes the scheme unstable. This module therefore integrates the total
+//! form, which is the same scheme with that mode removed (`tests/wilson_theta.rs` checks the
+//! eigenvalues):
+//!
+//! * `a_θ = 6/τ² (u_θ - u_n) - 6/τ v_n - 2 a_n` (linear acceleration over `τ`),
+//! * `M a_θ + K u_θ = f⁰(t_n + τ) + f_c(u_θ)`, where the contact forces
+//!   `f_c = Σ w Ñᵀ f_t` come from the implicit friction update over `[t_n, t_n + τ]` with the
+//!   body's relative displacement (eq. 13),
+//! * Newton's method with the consistent Jacobian `6/τ² M + K + K_c`,
+//!   `K_c = -Σ w Ñᵀ (∂f_t/∂Δū) Ñ` (eq. 14's `K_c`),
+//! * back to `t_{n+1}`: `a_{n+1} = a_n + (a_θ - a_n)/θ`, `v_{n+1} = v_n + Δt (a_n + a_{n+1})/2`,
+//!   `u_{n+1} = u_n + Δt v_n + Δt² (2 a_n + a_{n+1})/6`, and the Gauss-point states advanced
+//!   over `Δt` with the body's displacement increment.
+//!
+//! `θ ≥ 1.37` makes the method unconditionally stable on linear problems; `θ = 1.4` is the
+//! default. The Jacobian is refactored only when the contact tangents change.
+
+use std::fmt;
+
+use super::body::LinearBody;
+use super::contact::ContactBoundary;
+use super::sparse::{Cholesky, FactorError, SymmetricMatrix};
+use crate::friction::{ContactState, FrictionError, update};
+
+/// Settings of the integrator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WilsonSettings {
+    /// Wilson's `θ` (≥ 1.37 for unconditional stability on linear problems; 1.4 by default).
+    pub theta: f64,
+    /// Newton converges when the displacement correction is below `tolerance` times the larger
+    /// of the step's displacement and `velocity_scale × τ`.
+    pub tolerance: f64,
+    /// A velocity typical of the problem (the drive), m/s.
+    pub velocity_scale: f64,
+    /// Newton iterations allowed per step.
+    pub max_iterations: usize,
+}
+
+impl Default for WilsonSettings {
+    fn default() -> Self {
+        Self { theta: 1.4, tolerance: 1e-10, velocity_scale: 1e-3, max_iterations: 40 }
+    }
+}
+
+/// Kinematic and contact state at one instant.
+#[derive(Debug, Clone)]
+pub struct State {
+    /// Time (s).
+    pub time: f64,
+    /// Completed steps.
+    pub step: u64,
+    /// Displacement from the initial equilibrium (m).
+    pub displacement: Vec<f64>,
+    pub velocity: Vec<f64>,
+    pub acceleration: Vec<f64>,
+    /// Friction state of every contact point.
+    pub contact: Vec<ContactState>,
+    /// Plastic slip `Δp` of every contact point over the last step (m).
+    pub plastic_increment: Vec<f64>,
+}
+
+/// Why a step failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StepError {
+    /// The friction update of one contact point failed.
+    Friction { point: usize, state: ContactState, error: FrictionError },
+    /// Newton's method did not converge.
+    NotConverged { iterations: usize, correction: f64 },
+    /// The linear solve failed.
+    Factor(FactorError),
+    /// A non-finite value appeared.
+    NonFinite,
+}
+
+impl fmt::Display for StepError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            StepError::Friction { point, state, error } => write!(
+                f,
+                "contact point {point} (f_t = {} Pa, f_n = {} Pa, 1/R* = {}): {error}",
+                state.traction_t, state.traction_n, state.structure
+            ),
+            StepError::NotConverged { iterations, correction } => write!(
+                f,
+                "Newton's method did not converge in {iterations} iterations (last displacement correction {correction:e} m)"
+            ),
+            StepError::Factor(e) => write!(f, "{e}"),
+            StepError::NonFinite => write!(f, "a non-finite value appeared in the solution"),
+        }
+    }
+}
+
+impl std::error::Error for StepError {}
+
+/// Running energy balance (J per unit thickness, or J/m² per unit area).
+///
+/// `work_base + work_load = kinetic + strain + contact_elastic + dissipation + numerical`,
+/// where `numerical` is what the integrator itself dissipates (or adds).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct EnergyLedger {
+    /// `∫ Σ w f_t v_base dt`: work the moving base does through the contact.
+    pub work_base: f64,
+    /// `∫ f⁰(t)·v dt`: work of the external load beyond the initial equilibrium.
+    pub work_load: f64,
+    /// `½ vᵀ M v`.
+    pub kinetic: f64,
+    /// `½ uᵀ K u + uᵀ f_c(0)` (the second term is the work against the initial traction).
+    pub strain: f64,
+    /// `Σ w (f_t² - f_t(0)²) / (2 α_t)`: energy stored in the contact's elastic springs.
+    pub contact_elastic: f64,
+    /// `∫ Σ w Λ |f_t| dt`: frictional dissipation.
+    pub dissipation: f64,
+}
+
+impl EnergyLedger {
+    /// The integrator's own dissipation: input minus everything accounted for.
+    pub fn numerical(&self) -> f64 {
+        self.work_base + self.work_load - (self.kinetic + self.strain + self.contact_elastic + self.dissipation)
+    }
+}
+
+/// The dynamic system and its integrator.
+pub struct Dynamics {
+    pub body: LinearBody,
+    pub contact: ContactBoundary,
+    pub settings: WilsonSettings,
+    pub state: State,
+    initial_traction: Vec<f64>,
+    initial_contact_force: Vec<f64>,
+    imbalance: f64,
+    jacobian: SymmetricMatrix,
+    diagonal: Vec<usize>,
+    stiffness_entries: Vec<usize>,
+    point_entries: Vec<[usize; 4]>,
+    cholesky: Cholesky,
+    factored: Option<(f64, Vec<f64>)>,
+    ledger: Option<EnergyLedger>,
+}
+
+/// What the Newton loop evaluates at a trial `u_θ`.
+struct Evaluation {
+    residual: Vec<f64>,
+    acceleration: Vec<f64>,
+    contact_stiffness: Vec<f64>,
+}
+
+impl Dynamics {
+    /// Sets up the system at rest in its initial equilibrium.
+    pub fn new(body: LinearBody, contact: ContactBoundary, settings: WilsonSettings) -> Result<Self, StepError> {
+        let n = body.dofs();
+        let states: Vec<ContactState> = contact
+            .traction_n
+            .iter()
+            .map(|&fn_| ContactState::initial(&contact.params, fn_, contact.loading_direction))
+            .collect();
+        let initial_traction: Vec<f64> = states.iter().map(|s| s.traction_t).collect();
+        let mut initial_contact_force = vec![0.0; n];
+        for (point, s) in contact.points.iter().zip(&states) {
+            point.scatter(point.weight * s.traction_t, &mut initial_contact_force);
+        }
+        // The Jacobian's pattern: K, the diagonal, and every contact coupling.
+        let mut triplets: Vec<(usize, usize, f64)> = body.stiffness.entries().collect();
+        triplets.extend((0..n).map(|i| (i, i, 0.0)));
+        for p in &contact.points {
+            for a in 0..2 {
+                for b in 0..2 {
+                    triplets.push((p.dofs[a], p.dofs[b], 0.0));
+                }
+            }
+        }
+        let jacobian = SymmetricMatrix::from_triplets(n, &triplets);
+        let diagonal = (0..n).map(|i| jacobian.position(i, i).expect("diagonal in pattern")).collect();
+        let stiffness_entries = body
+            .stiffness
+            .entries()
+            .map(|(i, j, _)| jacobian.position(i, j).expect("K's pattern is in the Jacobian's"))
+            .collect();
+        let point_entries = contact
+            .points
+            .iter()
+            .map(|p| {
+                let pos =
+                    |a: usize, b: usize| jacobian.position(p.dofs[a], p.dofs[b]).expect("contact entry in pattern");
+                [pos(0, 0), pos(0, 1), pos(1, 0), pos(1, 1)]
+            })
+            .collect();
+        let cholesky = Cholesky::analyze(&jacobian).map_err(StepError::Factor)?;
+        let n_points = contact.points.len();
+        Ok(Self {
+            state: State {
+                time: 0.0,
+                step: 0,
+                displacement: vec![0.0; n],
+                velocity: vec![0.0; n],
+                acceleration: vec![0.0; n],
+                contact: states,
+                plastic_increment: vec![0.0; n_points],
+            },
+            body,
+            contact,
+            settings,
+            initial_traction,
+            initial_contact_force,
+            imbalance: 0.0,
+            jacobian,
+            diagonal,
+            stiffness_entries,
+            point_entries,
+            cholesky,
+            factored: None,
+            ledger: None,
+        })
+    }
+
+    /// Keeps an [`EnergyLedger`] from now on (costs one product with `K` per step).
+    pub fn track_energy(&mut self) {
+        let mut ledger = EnergyLedger::default();
+        self.refresh_stored_energy(&mut ledger);
+        self.ledger = Some(ledger);
+    }
+
+    /// The energy balance so far, if tracked.
+    pub fn energy(&self) -> Option<EnergyLedger> {
+        self.ledger
+    }
+
+    /// Advances the state by `dt`.
+    pub fn step(&mut self, dt: f64) -> Result<(), StepError> {
+        let theta = self.settings.theta;
+        let tau = theta * dt;
+        let s = &self.state;
+        // Predictor: constant acceleration over τ.
+        let mut du_theta: Vec<f64> =
+            s.velocity.iter().zip(&s.acceleration).map(|(v, a)| tau * v + 0.5 * tau * tau * a).collect();
+        let mut eval = self.evaluate(&du_theta, tau)?;
+        let mut norm = l2(&eval.residual);
+        let scale = self.settings.velocity_scale.max(f64::MIN_POSITIVE) * tau;
+        let mut last_correction = f64::INFINITY;
+        for _ in 0..self.settings.max_iterations {
+            self.factor_jacobian(tau, &eval.contact_stiffness)?;
+            let mut delta: Vec<f64> = eval.residual.iter().map(|r| -r).collect();
+            self.cholesky.solve_in_place(&mut delta);
+            // Backtracking keeps the residual from growing across stick/slip switches.
+            let mut step_length = 1.0;
+            let (trial, trial_eval, trial_norm) = loop {
+                let candidate: Vec<f64> = du_theta.iter().zip(&delta).map(|(u, d)| u + step_length * d).collect();
+                let candidate_eval = self.evaluate(&candidate, tau)?;
+                let candidate_norm = l2(&candidate_eval.residual);
+                if candidate_norm <= norm || step_length < 1.0 / 64.0 {
+                    break (candidate, candidate_eval, candidate_norm);
+                }
+                step_length *= 0.5;
+            };
+            last_correction = step_length * max_abs(&delta);
+            du_theta = trial;
+            eval = trial_eval;
+            norm = trial_norm;
+            if !last_correction.is_finite() {
+                return Err(StepError::NonFinite);
+            }
+            if last_correction <= self.settings.tolerance * max_abs(&du_theta).max(scale) {
+                return self.finish_step(dt, &eval.acceleration);
+            }
+        }
+        Err(StepError::NotConverged { iterations: self.settings.max_iterations, correction: last_correction })
+    }
+
+    /// Residual of the equation of motion at `t_n + τ` for a trial displacement increment
+    /// `u_θ - u_n`, and the contact tangents.
+    fn evaluate(&self, du_theta: &[f64], tau: f64) -> Result<Evaluation, StepError> {
+        let s = &self.state;
+        let n = du_theta.len();
+        let c0 = 6.0 / (tau * tau);
+        let acceleration: Vec<f64> =
+            (0..n).map(|i| c0 * du_theta[i] - 6.0 / tau * s.velocity[i] - 2.0 * s.acceleration[i]).collect();
+        let u_theta: Vec<f64> = s.displacement.iter().zip(du_theta).map(|(u, d)| u + d).collect();
+        let mut residual = vec![0.0; n];
+        self.body.stiffness.mul_vec(&u_theta, &mut residual);
+        let t_theta = s.time + tau;
+        for i in 0..n {
+            residual[i] +=
+                self.body.mass[i] * acceleration[i] - t_theta * self.body.load_rate[i] + self.initial_contact_force[i];
+        }
+        let params = &self.contact.params;
+        let base = self.contact.base_velocity;
+        let mut contact_stiffness = Vec::with_capacity(self.contact.points.len());
+        for (k, (point, state)) in self.contact.points.iter().zip(&s.contact).enumerate() {
+            let slip = point.interpolate(du_theta) - base * tau;
+            let updated = update(params, state, slip, tau).map_err(|error| StepError::Friction {
+                point: k,
+                state: *state,
+                error,
+            })?;
+            point.scatter(-point.weight * updated.state.traction_t, &mut residual);
+            contact_stiffness.push(-point.weight * updated.tangent);
+        }
+        Ok(Evaluation { residual, acceleration, contact_stiffness })
+    }
+
+    /// Assembles and factors `6/τ² M + K + K_c` unless the factored one is the same.
+    fn factor_jacobian(&mut self, tau: f64, contact_stiffness: &[f64]) -> Result<(), StepError> {
+        if let Some((t, k)) = &self.factored
+            && *t == tau
+            && k.as_slice() == contact_stiffness
+        {
+            return Ok(());
+        }
+        let c0 = 6.0 / (tau * tau);
+        let values = self.jacobian.values_mut();
+        values.iter_mut().for_each(|v| *v = 0.0);
+        for (&pos, &k) in self.stiffness_entries.iter().zip(self.body.stiffness.values()) {
+            values[pos] += k;
+        }
+        for (i, &pos) in self.diagonal.iter().enumerate() {
+            values[pos] += c0 * self.body.mass[i];
+        }
+        for ((point, entries), &k) in self.contact.points.iter().zip(&self.point_entries).zip(contact_stiffness) {
+            let [n0, n1] = point.shape;
+            values[entries[0]] += k * n0 * n0;
+            values[entries[1]] += k * n0 * n1;
+            values[entries[2]] += k * n1 * n0;
+            values[entries[3]] += k * n1 * n1;
+        }
+        self.cholesky.factor(&self.jacobian).map_err(StepError::Factor)?;
+        self.factored = Some((tau, contact_stiffness.to_vec()));
+        Ok(())
+    }
+
+    /// Interpolates back to `t_{n+1}`, advances the contact states over `Δt`, and updates the
+    /// equilibrium imbalance and the energy ledger.
+    fn finish_step(&mut self, dt: f64, acceleration_theta: &[f64]) -> Result<(), StepError> {
+        let n = self.body.dofs();
+        let theta = self.settings.theta;
+        let base = self.contact.base_velocity;
+        let old = self.state.clone();
+        let s = &mut self.state;
+        let mut du = vec![0.0; n];
+        for i in 0..n {
+            let a1 = old.acceleration[i] + (acceleration_theta[i] - old.acceleration[i]) / theta;
+            s.acceleration[i] = a1;
+            s.velocity[i] = old.velocity[i] + 0.5 * dt * (old.acceleration[i] + a1);
+            du[i] = dt * old.velocity[i] + dt * dt * (2.0 * old.acceleration[i] + a1) / 6.0;
+            s.displacement[i] = old.displacement[i] + du[i];
+        }
+        if s.velocity.iter().chain(&s.displacement).any(|x| !x.is_finite()) {
+            return Err(StepError::NonFinite);
+        }
+        for (k, point) in self.contact.points.iter().enumerate() {
+            let slip = point.interpolate(&du) - base * dt;
+            let updated = update(&self.contact.params, &old.contact[k], slip, dt)
+                .map_err(|error| StepError::Friction { point: k, state: old.contact[k], error })?;
+            s.contact[k] = updated.state;
+            s.plastic_increment[k] = updated.plastic_increment;
+        }
+        s.time = old.time + dt;
+        s.step = old.step + 1;
+
+        // Imbalance of M a + K u = f⁰ + f_c - f_c(0) at t_{n+1} (Wilson enforces it at t_n + τ).
+        let mut imbalance = vec![0.0; n];
+        self.body.stiffness.mul_vec(&s.displacement, &mut imbalance);
+        for (i, e) in imbalance.iter_mut().enumerate() {
+            *e = s.time * self.body.load_rate[i]
+                - self.initial_contact_force[i]
+                - self.body.mass[i] * s.acceleration[i]
+                - *e;
+        }
+        for (point, c) in self.contact.points.iter().zip(&s.contact) {
+            point.scatter(point.weight * c.traction_t, &mut imbalance);
+        }
+        self.imbalance = max_abs(&imbalance);
+
+        if let Some(mut ledger) = self.ledger.take() {
+            let power_base = |state: &State| -> f64 {
+                self.contact.points.iter().zip(&state.contact).map(|(p, c)| p.weight * c.traction_t * base).sum()
+            };
+            let power_load = |state: &State| -> f64 {
+                self.body.load_rate.iter().zip(&state.velocity).map(|(f, v)| state.time * f * v).sum()
+            };
+            ledger.work_base += 0.5 * dt * (power_base(&old) + power_base(&self.state));
+            ledger.work_load += 0.5 * dt * (power_load(&old) + power_load(&self.state));
+            ledger.dissipation += self
+                .contact
+                .points
+                .iter()
+                .enumerate()
+                .map(|(k, p)| {
+                    p.weight
+                        * self.state.plastic_increment[k]
+                        * 0.5
+                        * (old.contact[k].traction_t.abs() + self.state.contact[k].traction_t.abs())
+                })
+                .sum::<f64>();
+            self.refresh_stored_energy(&mut ledger);
+            self.ledger = Some(ledger);
+        }
+        Ok(())
+    }
+
+    fn refresh_stored_energy(&self, ledger: &mut EnergyLedger) {
+        let s = &self.state;
+        ledger.kinetic = self.body.kinetic_energy(&s.velocity);
+        ledger.strain = self.body.strain_energy(&s.displacement)
+            + s.displacement.iter().zip(&self.initial_contact_force).map(|(u, f)| u * f).sum::<f64>();
+        let alpha = self.contact.params.alpha_t;
+        ledger.contact_elastic = self
+            .contact
+            .points
+            .iter()
+            .zip(&s.contact)
+            .zip(&self.initial_traction)
+            .map(|((p, c), f0)| p.weight * (c.traction_t * c.traction_t - f0 * f0) / (2.0 * alpha))
+            .sum();
+    }
+
+    /// Largest nodal imbalance of the total equation at the end of the last step (N/m or Pa).
+    /// Wilson's method enforces equilibrium at `t_n + θΔt`, so this is the interpolation error,
+    /// not an accumulated drift.
+    pub fn imbalance(&self) -> f64 {
+        self.imbalance
+    }
+}
+
+fn l2(x: &[f64]) -> f64 {
+    x.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
+
+fn max_abs(x: &[f64]) -> f64 {
+    x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+}

@@ -1,0 +1,232 @@
+//! The rate form of the super/subloading surface friction model, eqs. (1)-(9) of the paper with
+//! the sign conventions of MODEL.md, in 2D: `n = (0, 1)`, `t = (sign f_t, 0)`.
+//!
+//! The analyses prescribe the normal traction, so the scalar functions here take the relative
+//! tangential velocity `v̄_t` only; [`traction_rate`] gives the full 2D rate of eq. (6).
+
+use nalgebra::{Matrix2, Vector2};
+
+use super::params::FrictionParams;
+use super::state::ContactState;
+
+/// Normal sliding-yield surface, eq. (1): `f_t/f_n - μ_k`.
+pub fn normal_yield_surface(params: &FrictionParams, traction_t: f64, traction_n: f64) -> f64 {
+    traction_t.abs() / traction_n - params.mu_k
+}
+
+/// Superloading-sliding surface, eq. (2): `f_t/f_n - μ_k/R*`.
+pub fn superloading_surface(params: &FrictionParams, state: &ContactState) -> f64 {
+    state.traction_t.abs() / state.traction_n - params.mu_k * state.structure
+}
+
+/// Subloading-sliding surface, eq. (3): `f_t/f_n - (R/R*) μ_k`, for a given `R`.
+pub fn subloading_surface(params: &FrictionParams, state: &ContactState, sliding_ratio: f64) -> f64 {
+    state.traction_t.abs() / state.traction_n - sliding_ratio * state.structure * params.mu_k
+}
+
+/// Decay term of eq. (4) per unit plastic slip, `(1/R* - 1)^m`.
+pub fn decay(params: &FrictionParams, structure: f64) -> f64 {
+    power(structure - 1.0, params.m)
+}
+
+/// `d/d(1/R*)` of [`decay`]; infinite at `1/R* = 1` when `m < 1`.
+pub fn decay_slope(params: &FrictionParams, structure: f64) -> f64 {
+    power_slope(structure - 1.0, params.m)
+}
+
+/// Healing term of eq. (4), `(1 - μ_k/(μ_s R*))^n`.
+pub fn healing(params: &FrictionParams, structure: f64) -> f64 {
+    power(1.0 - params.kinetic_static_ratio() * structure, params.n)
+}
+
+/// `max(x, 0)^e`, without `powf` for the paper's `e = 1`.
+fn power(x: f64, exponent: f64) -> f64 {
+    let x = x.max(0.0);
+    if exponent == 1.0 { x } else { general_power(x, exponent) }
+}
+
+/// `x^e` out of line: inlined, LLVM turns the branch in [`power`] into a select that always
+/// evaluates `pow` (20× the time of the paper's `e = 1` path).
+#[cold]
+#[inline(never)]
+fn general_power(x: f64, exponent: f64) -> f64 {
+    x.powf(exponent)
+}
+
+/// `d/d(1/R*)` of [`healing`]; infinite at `1/R* = μ_s/μ_k` when `n < 1`.
+pub fn healing_slope(params: &FrictionParams, structure: f64) -> f64 {
+    let a = params.kinetic_static_ratio();
+    -a * power_slope(1.0 - a * structure, params.n)
+}
+
+/// `d/dx max(x, 0)^e` for `e > 0`, with the one-sided limit at `x = 0`.
+fn power_slope(x: f64, exponent: f64) -> f64 {
+    if exponent == 1.0 {
+        1.0
+    } else if x > 0.0 {
+        exponent * general_power(x, exponent - 1.0)
+    } else if exponent < 1.0 {
+        f64::INFINITY
+    } else {
+        0.0
+    }
+}
+
+/// Rate of the degree of structure, eq. (4) rewritten for `1/R*`:
+///
+/// `d(1/R*)/dt = -Ṙ*/R*² = -γ κ (1/R* - 1)^m Λ + γ ξ (1 - μ_k/(μ_s R*))^n`,
+///
+/// with `γ = 1` (consistent law) or `1/μ_k` (eq. 4 as printed).
+pub fn structure_rate(params: &FrictionParams, structure: f64, plastic_multiplier: f64) -> f64 {
+    let gamma = params.rstar_scale();
+    -gamma * params.kappa * decay(params, structure) * plastic_multiplier
+        + gamma * params.xi * healing(params, structure)
+}
+
+/// Rate of `R*` itself, eq. (4) (with `γ`): `Ṙ* = γ R*² [κ (1/R* - 1)^m Λ - ξ (1 - μ_k/(μ_s R*))^n]`.
+pub fn r_star_rate(params: &FrictionParams, structure: f64, plastic_multiplier: f64) -> f64 {
+    -structure_rate(params, structure, plastic_multiplier) / (structure * structure)
+}
+
+/// The denominator shared by eqs. (5), (7), (8):
+///
+/// `D = α_t + r (-ln R)/R* μ_k f_n - γ κ R (1/R* - 1)^m μ_k f_n`.
+///
+/// `D → ∞` as `R → 0`.
+pub fn denominator(params: &FrictionParams, state: &ContactState) -> f64 {
+    let ratio = state.sliding_ratio(params);
+    let mu_f = params.mu_k * state.traction_n;
+    let gamma = params.rstar_scale();
+    params.alpha_t + params.r * (-ratio.ln()) * state.structure * mu_f
+        - gamma * params.kappa * ratio * decay(params, state.structure) * mu_f
+}
+
+/// Numerator of eq. (5) for a relative sliding velocity `v̄ = (v̄_t, v̄_n)`:
+/// `(α_n (R/R*) μ_k n - α_t t)·v̄ - γ ξ R (1 - μ_k/(μ_s R*))^n μ_k f_n`.
+fn numerator(params: &FrictionParams, state: &ContactState, v_rel: Vector2<f64>) -> f64 {
+    let ratio = state.sliding_ratio(params);
+    let mu_f = params.mu_k * state.traction_n;
+    let gamma = params.rstar_scale();
+    params.alpha_n * ratio * state.r_star() * params.mu_k * v_rel.y
+        - params.alpha_t * state.direction() * v_rel.x
+        - gamma * params.xi * ratio * healing(params, state.structure) * mu_f
+}
+
+/// Plastic multiplier `Λ` of eq. (5). Loading if `Λ > 0`, unloading otherwise (eq. 9).
+/// A point without traction (`R = 0`) has `Λ = 0`: `D` is infinite there.
+pub fn plastic_multiplier(params: &FrictionParams, state: &ContactState, v_rel: Vector2<f64>) -> f64 {
+    if state.traction_n <= 0.0 || state.traction_t == 0.0 {
+        return 0.0;
+    }
+    numerator(params, state, v_rel) / denominator(params, state)
+}
+
+/// Elastic tensor `C^e = -α_n n⊗n - α_t (I - n⊗n)`.
+pub fn elastic_tensor(params: &FrictionParams) -> Matrix2<f64> {
+    Matrix2::new(-params.alpha_t, 0.0, 0.0, -params.alpha_n)
+}
+
+/// Elastoplastic tensor `C^ep` of eq. (7).
+pub fn elastoplastic_tensor(params: &FrictionParams, state: &ContactState) -> Matrix2<f64> {
+    let t = Vector2::new(state.direction(), 0.0);
+    let n = Vector2::new(0.0, 1.0);
+    let ratio = state.sliding_ratio(params);
+    let flow = n * (params.alpha_n * ratio * state.r_star() * params.mu_k) - t * params.alpha_t;
+    elastic_tensor(params) - (t * params.alpha_t) * flow.transpose() / denominator(params, state)
+}
+
+/// Healing coefficient `C^c` of eq. (8): `α_t γ ξ R (1 - μ_k/(μ_s R*))^n μ_k f_n / D`.
+pub fn healing_coefficient(params: &FrictionParams, state: &ContactState) -> f64 {
+    if state.traction_t == 0.0 {
+        return 0.0;
+    }
+    let ratio = state.sliding_ratio(params);
+    let mu_f = params.mu_k * state.traction_n;
+    params.alpha_t * params.rstar_scale() * params.xi * ratio * healing(params, state.structure) * mu_f
+        / denominator(params, state)
+}
+
+/// Traction rate of eq. (6), switched by eq. (9): `ḟ = C^ep v̄ + C^c t` while loading
+/// (`Λ > 0`), `ḟ = C^e v̄` otherwise. Returns the rate and `Λ` (clipped at 0).
+pub fn traction_rate(params: &FrictionParams, state: &ContactState, v_rel: Vector2<f64>) -> (Vector2<f64>, f64) {
+    let lambda = plastic_multiplier(params, state, v_rel);
+    if lambda > 0.0 {
+        let t = Vector2::new(state.direction(), 0.0);
+        let rate = elastoplastic_tensor(params, state) * v_rel + t * healing_coefficient(params, state);
+        (rate, lambda)
+    } else {
+        (elastic_tensor(params) * v_rel, 0.0)
+    }
+}
+
+/// Tangential traction rate `ḟ_t` under constant normal traction, with its partial derivatives,
+/// as the dynamic solver needs them at the end of a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TangentialRate {
+    /// `ḟ_t` (Pa/s).
+    pub rate: f64,
+    /// `Λ ≥ 0` (m/s).
+    pub plastic_multiplier: f64,
+    /// `∂ḟ_t/∂v̄_t`: the `tt` entry of `C^ep` (loading) or `C^e` (unloading) (Pa/m).
+    pub d_velocity: f64,
+    /// `∂ḟ_t/∂f_t` at fixed `v̄_t` and `1/R*` (1/s).
+    pub d_traction: f64,
+    /// `∂ḟ_t/∂(1/R*)` at fixed `v̄_t` and `f_t` (Pa/s).
+    pub d_structure: f64,
+}
+
+/// [`traction_rate`] for `v̄ = (v̄_t, 0)`, tangential component, with partial derivatives.
+pub fn tangential_rate(params: &FrictionParams, state: &ContactState, v_t: f64) -> TangentialRate {
+    let elastic = TangentialRate {
+        rate: -params.alpha_t * v_t,
+        plastic_multiplier: 0.0,
+        d_velocity: -params.alpha_t,
+        d_traction: 0.0,
+        d_structure: 0.0,
+    };
+    if state.traction_n <= 0.0 {
+        // No normal traction: nothing is transmitted.
+        return TangentialRate {
+            rate: 0.0,
+            plastic_multiplier: 0.0,
+            d_velocity: 0.0,
+            d_traction: 0.0,
+            d_structure: 0.0,
+        };
+    }
+    if state.traction_t == 0.0 {
+        return elastic;
+    }
+    let sigma = state.direction();
+    let z = state.structure;
+    let mu_f = params.mu_k * state.traction_n;
+    let gamma = params.rstar_scale();
+    let ratio = state.sliding_ratio(params);
+    let u = -ratio.ln();
+    let h = healing(params, z);
+    let g = decay(params, z);
+    let numer = -params.alpha_t * sigma * v_t - gamma * params.xi * ratio * h * mu_f;
+    let denom = params.alpha_t + params.r * u * z * mu_f - gamma * params.kappa * ratio * g * mu_f;
+    let lambda = numer / denom;
+    if lambda <= 0.0 {
+        return elastic;
+    }
+    // Partials of N and D with respect to R and to 1/R* at fixed R.
+    let dn_dratio = -gamma * params.xi * h * mu_f;
+    let dn_dz = -gamma * params.xi * ratio * healing_slope(params, z) * mu_f;
+    let dg_dz = decay_slope(params, z);
+    let dd_dratio = -params.r * z * mu_f / ratio - gamma * params.kappa * g * mu_f;
+    let dd_dz = params.r * u * mu_f - gamma * params.kappa * ratio * dg_dz * mu_f;
+    let dlambda_dratio = (dn_dratio - lambda * dd_dratio) / denom;
+    let dlambda_dz_fixed_ratio = (dn_dz - lambda * dd_dz) / denom;
+    // R = |f_t| / (μ_k f_n z).
+    let dratio_dtraction = sigma / (mu_f * z);
+    let dratio_dz = -ratio / z;
+    TangentialRate {
+        rate: -params.alpha_t * v_t - params.alpha_t * sigma * lambda,
+        plastic_multiplier: lambda,
+        d_velocity: -params.alpha_t * (1.0 - params.alpha_t / denom),
+        d_traction: -params.alpha_t * sigma * dlambda_dratio * dratio_dtraction,
+        d_structure: -params.alpha_t * sigma * (dlambda_dratio * dratio_dz + dlambda_dz_fixed_ratio),
+    }
+}

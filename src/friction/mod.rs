@@ -1,0 +1,17 @@
+//! The super/subloading surface friction model (paper §2.1, MODEL.md): no I/O, no scene.
+//!
+//! * [`params`]: material constants (Table 1) and which `R*` rule is used.
+//! * [`state`]: what a contact point carries between steps.
+//! * [`law`]: the rate form, eqs. (1)-(9).
+//! * [`update`]: the implicit step a solver calls, with its consistent tangent.
+//! * [`expint`]: the exponential integral that makes the `R` rule exact.
+
+pub mod expint;
+pub mod law;
+pub mod params;
+pub mod state;
+pub mod update;
+
+pub use params::{FrictionParams, RStarLaw};
+pub use state::ContactState;
+pub use update::{FrictionError, Update, update};

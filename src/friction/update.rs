@@ -1,0 +1,301 @@
+//! The implicit update of a contact point over one step: the discrete counterpart of eqs. (5)-(9).
+//!
+//! Given the state at `t_n` and a prescribed relative tangential displacement increment `Δū`
+//! over `Δt`, the update returns the state at `t_{n+1}` and the consistent tangent `∂f_t/∂Δū`.
+//!
+//! * Traction: elastic predictor `f_trial = f_n - α_t Δū`, plastic corrector along `t` (radial
+//!   return, exact in 1D): `|f_{n+1}| = |f_trial| - α_t Δp`, where `Δp = ∫ Λ dt ≥ 0`.
+//! * Degree of structure `z = 1/R*`: the trapezoidal rule on eq. (4),
+//!   `z₁ = z₀ - γκ Δp [(z₀-1)^m + (z₁-1)^m]/2 + γξ Δt [(1-a z₀)^n + (1-a z₁)^n]/2`, `a = μ_k/μ_s`,
+//!   implicit in `z₁` (the decay term is integrated in `p`, the healing term in `t`).
+//! * Normal sliding ratio: `Ṙ = -r ln(R) Λ` integrated exactly, `Ψ(R₁) = Ψ(R₀) + r Δp`
+//!   (see [`super::expint`]).
+//! * Consistency: the subloading surface passes through the new traction,
+//!   `|f_{n+1}| = R₁ μ_k f_n z₁` (eq. 3). This scalar equation in `Δp` is solved by safeguarded
+//!   Newton; loading (`Δp > 0`) happens exactly when the elastic predictor lies outside the
+//!   current subloading surface, the discrete form of `Λ > 0` in eq. (9).
+//!
+//! Traction reversal: when the predictor changes the sign of `f_t`, the path passed through
+//! `f_t = 0`, where `R = 0`; the corrector then starts from `Ψ(0) = 0` in the new direction. No
+//! `ln 0` is ever evaluated.
+
+use std::fmt;
+
+use super::expint::{psi, psi_inverse};
+use super::law::{decay, decay_slope, healing, healing_slope};
+use super::params::FrictionParams;
+use super::state::ContactState;
+
+/// Relative slack allowed at the bounds of `R` and `1/R*` for rounding only.
+const ROUNDING: f64 = 1e-12;
+
+/// Result of one update.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Update {
+    /// State at the end of the step.
+    pub state: ContactState,
+    /// Plastic slip increment `Δp = ∫ Λ dt ≥ 0` (m).
+    pub plastic_increment: f64,
+    /// Consistent tangent `∂f_t/∂Δū` (Pa/m): `-α_t` in unloading, `-α_t (1 - α_t/|∂ψ/∂Δp|)` in
+    /// loading; 0 where there is no normal traction.
+    pub tangent: f64,
+    /// `∂(1/R*)/∂Δū` (1/m).
+    pub structure_tangent: f64,
+}
+
+/// A contact state the model does not admit, or an update that found no solution.
+#[derive(Debug, Clone, PartialEq)]
+pub enum FrictionError {
+    /// `1/R*` would leave `[1, μ_s/μ_k]`: the step is too large for the trapezoidal rule.
+    StructureOutOfRange { structure: f64, min: f64, max: f64, plastic_increment: f64, dt: f64 },
+    /// `R` outside `[0, 1]` at the start of a step.
+    SlidingRatioOutOfRange { sliding_ratio: f64 },
+    /// A non-finite input (increment, step, state).
+    NonFinite { what: &'static str, value: f64 },
+    /// The consistency equation did not converge.
+    NotConverged { residual: f64 },
+}
+
+impl fmt::Display for FrictionError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FrictionError::StructureOutOfRange { structure, min, max, plastic_increment, dt } => write!(
+                f,
+                "degree of structure 1/R* = {structure} leaves [{min}, {max}] in a step of dt = {dt} s \
+                 with plastic slip {plastic_increment} m: the trapezoidal update of eq. (4) needs a smaller step"
+            ),
+            FrictionError::SlidingRatioOutOfRange { sliding_ratio } => {
+                write!(f, "normal sliding ratio R = {sliding_ratio} is outside [0, 1]")
+            }
+            FrictionError::NonFinite { what, value } => write!(f, "{what} is not finite ({value})"),
+            FrictionError::NotConverged { residual } => {
+                write!(f, "the consistency condition did not converge (residual {residual} Pa)")
+            }
+        }
+    }
+}
+
+impl std::error::Error for FrictionError {}
+
+/// Advances one contact point by the relative tangential displacement `slip_increment` (m) over
+/// `dt` (s). See the module documentation for the scheme.
+pub fn update(
+    params: &FrictionParams,
+    state: &ContactState,
+    slip_increment: f64,
+    dt: f64,
+) -> Result<Update, FrictionError> {
+    if !slip_increment.is_finite() {
+        return Err(FrictionError::NonFinite { what: "relative slip increment", value: slip_increment });
+    }
+    if !dt.is_finite() || dt < 0.0 {
+        return Err(FrictionError::NonFinite { what: "time step", value: dt });
+    }
+    let alpha = params.alpha_t;
+    let z0 = state.structure;
+    let traction_n = state.traction_n;
+
+    if traction_n <= 0.0 {
+        // No normal traction: no strength, no traction; all relative sliding is plastic.
+        let increment = slip_increment.abs();
+        let structure = solve_structure(params, z0, increment, dt)?;
+        return Ok(Update {
+            state: ContactState {
+                traction_t: 0.0,
+                structure: structure.value,
+                plastic_slip: state.plastic_slip + increment,
+                ..*state
+            },
+            plastic_increment: increment,
+            tangent: 0.0,
+            structure_tangent: structure.d_plastic * slip_increment.signum(),
+        });
+    }
+
+    let mu_f = params.mu_k * traction_n;
+    let trial = state.traction_t - alpha * slip_increment;
+    let healed = solve_structure(params, z0, 0.0, dt)?;
+    let elastic = Update {
+        state: ContactState { traction_t: trial, structure: healed.value, ..*state },
+        plastic_increment: 0.0,
+        tangent: -alpha,
+        structure_tangent: 0.0,
+    };
+    if trial == 0.0 {
+        return Ok(elastic);
+    }
+    let sigma = trial.signum();
+    let reversed = state.traction_t * sigma <= 0.0;
+    let ratio_start = if reversed { 0.0 } else { state.traction_t.abs() / (mu_f * z0) };
+    if ratio_start.is_nan() || ratio_start > 1.0 + ROUNDING {
+        return Err(FrictionError::SlidingRatioOutOfRange { sliding_ratio: ratio_start });
+    }
+    let trial_abs = trial.abs();
+    if trial_abs / (mu_f * healed.value) <= ratio_start {
+        return Ok(elastic); // unloading: the predictor lies inside the subloading surface
+    }
+
+    // Loading: find Δp in (0, |f_trial|/α_t] with ψ(Δp) = |f_trial| - α_t Δp - R(Δp) μ_k f_n z(Δp) = 0.
+    let psi_start = psi(ratio_start);
+    // The previous iterate's -ln R starts the next inversion of Ψ.
+    let near = std::cell::Cell::new(None);
+    let residual = |increment: f64| -> Result<Residual, FrictionError> {
+        let structure = solve_structure(params, z0, increment, dt)?;
+        let (ratio, log_ratio) = if psi_start.is_infinite() {
+            (1.0, 0.0)
+        } else {
+            psi_inverse(psi_start + params.r * increment, near.get())
+        };
+        near.set(Some(log_ratio));
+        let value = trial_abs - alpha * increment - ratio * mu_f * structure.value;
+        // dR/dΔp = r (-ln R), from Ψ'(R) = 1/(-ln R).
+        let slope = -alpha - mu_f * (params.r * log_ratio * structure.value + ratio * structure.d_plastic);
+        Ok(Residual { value, slope, structure })
+    };
+
+    let mut lo = 0.0_f64;
+    let mut hi = trial_abs / alpha;
+    // Newton from the left converges monotonically where ψ is convex; from R = 0 the slope at
+    // Δp = 0 is infinite, so start a little inside.
+    let mut x = if ratio_start > 0.0 { 0.0 } else { hi * 1e-12 };
+    let mut last = residual(x)?;
+    // ψ is a difference of tractions of size |f_trial|: below this it is rounding noise.
+    let noise = 8.0 * f64::EPSILON * trial_abs;
+    for _ in 0..200 {
+        if last.value.abs() <= noise {
+            break;
+        }
+        if last.value > 0.0 {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        let newton = x - last.value / last.slope;
+        let next = if newton.is_finite() && newton > lo && newton < hi {
+            newton
+        } else if lo == 0.0 {
+            hi * 1e-4
+        } else if hi > 1e4 * lo {
+            (lo * hi).sqrt()
+        } else {
+            0.5 * (lo + hi)
+        };
+        let step = (next - x).abs();
+        x = next;
+        last = residual(x)?;
+        if step <= 1e-14 * x || hi - lo <= 1e-14 * hi {
+            break;
+        }
+    }
+    if last.value.is_nan() || last.value.abs() > 1e-9 * trial_abs.max(mu_f) {
+        return Err(FrictionError::NotConverged { residual: last.value });
+    }
+    let increment = x;
+    let stiffness = -last.slope; // |∂ψ/∂Δp|
+    let traction = sigma * (trial_abs - alpha * increment);
+    // ∂Δp/∂|f_trial| = 1/|∂ψ/∂Δp|, ∂|f_trial|/∂Δū = -α_t σ.
+    let d_increment = -alpha * sigma / stiffness;
+    Ok(Update {
+        state: ContactState {
+            traction_t: traction,
+            traction_n,
+            structure: last.structure.value,
+            plastic_slip: state.plastic_slip + increment,
+        },
+        plastic_increment: increment,
+        tangent: -alpha * (1.0 - alpha / stiffness),
+        structure_tangent: last.structure.d_plastic * d_increment,
+    })
+}
+
+struct Residual {
+    value: f64,
+    slope: f64,
+    structure: Structure,
+}
+
+/// `1/R*` at the end of a step and its derivative with respect to the plastic slip increment.
+#[derive(Debug, Clone, Copy)]
+struct Structure {
+    value: f64,
+    d_plastic: f64,
+}
+
+/// Solves the trapezoidal rule for the degree of structure (see the module documentation).
+/// `F(z)` is strictly increasing (`F' ≥ 1`), so the root is unique; if it lies outside
+/// `[1, μ_s/μ_k]` the step is too large for the rule and an error says so.
+fn solve_structure(
+    params: &FrictionParams,
+    z0: f64,
+    plastic_increment: f64,
+    dt: f64,
+) -> Result<Structure, FrictionError> {
+    let gamma = params.rstar_scale();
+    let decay_weight = 0.5 * gamma * params.kappa * plastic_increment;
+    let heal_weight = 0.5 * gamma * params.xi * dt;
+    let fixed = z0 - decay_weight * decay(params, z0) + heal_weight * healing(params, z0);
+    let f = |z: f64| z - fixed + decay_weight * decay(params, z) - heal_weight * healing(params, z);
+    let df = |z: f64| 1.0 + decay_weight * decay_slope(params, z) - heal_weight * healing_slope(params, z);
+    let min = 1.0;
+    let max = 1.0 / params.kinetic_static_ratio();
+    let out_of_range =
+        |structure: f64| FrictionError::StructureOutOfRange { structure, min, max, plastic_increment, dt };
+    if !z0.is_finite() {
+        return Err(FrictionError::NonFinite { what: "degree of structure", value: z0 });
+    }
+    let f_min = f(min);
+    let f_max = f(max);
+    if f_min > ROUNDING * max {
+        // Root below 1: estimate it for the message.
+        return Err(out_of_range(min - f_min));
+    }
+    if f_max < -ROUNDING * max {
+        return Err(out_of_range(max - f_max));
+    }
+    let mut z = if params.m == 1.0 && params.n == 1.0 {
+        // The paper's exponents make F linear in z inside [1, μ_s/μ_k]: solve directly.
+        let a = params.kinetic_static_ratio();
+        ((fixed + decay_weight + heal_weight) / (1.0 + decay_weight + heal_weight * a)).clamp(min, max)
+    } else {
+        newton_structure(&f, &df, z0.clamp(min, max), min, max)
+    };
+    if params.m == 1.0 && params.n == 1.0 {
+        // One Newton correction polishes the rounding of the closed form.
+        z = (z - f(z) / df(z)).clamp(min, max);
+    }
+    let slope = df(z);
+    // ∂F/∂Δp = γκ/2 [(z₀-1)^m + (z-1)^m]; dz/dΔp = -(∂F/∂Δp)/(∂F/∂z).
+    let d_plastic = if slope.is_finite() {
+        -0.5 * gamma * params.kappa * (decay(params, z0) + decay(params, z)) / slope
+    } else {
+        0.0
+    };
+    Ok(Structure { value: z, d_plastic })
+}
+
+/// Safeguarded Newton for the increasing `f` on `[min, max]`, where it changes sign.
+fn newton_structure(f: &impl Fn(f64) -> f64, df: &impl Fn(f64) -> f64, start: f64, min: f64, max: f64) -> f64 {
+    let (mut lo, mut hi) = (min, max);
+    let mut z = start;
+    for _ in 0..200 {
+        let value = f(z);
+        // F is a sum of terms of size max: below a few ulps of that it is rounding noise.
+        if value.abs() <= 4.0 * f64::EPSILON * max {
+            break;
+        }
+        if value < 0.0 {
+            lo = z;
+        } else {
+            hi = z;
+        }
+        let slope = df(z);
+        let newton = z - value / slope;
+        let next = if newton.is_finite() && newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
+        let step = (next - z).abs();
+        z = next;
+        if step <= 2.0 * f64::EPSILON * z || hi - lo <= 2.0 * f64::EPSILON * hi {
+            break;
+        }
+    }
+    z
+}

@@ -1,0 +1,12 @@
+//! slipfront: dynamic finite elements with a frictional contact boundary that follows the
+//! super/subloading surface friction model (Yasuike & Toyoda), streamed to Rerun.
+
+pub mod case;
+pub mod cli;
+pub mod dynamics;
+pub mod fem;
+pub mod friction;
+pub mod run;
+pub mod scene;
+pub mod sink;
+pub mod validate;

@@ -1,0 +1,122 @@
+//! `kind = "block"`: the paper's §3 analysis, a plane-strain elastic block whose bottom is the
+//! frictional contact against a moving rigid base.
+
+use super::{Frame, Layout, Needs, NodeInfo, RunError, Scene, SegmentInfo, segment_sample, step_error};
+use crate::case::{BlockSpec, Case};
+use crate::dynamics::{Dynamics, WilsonSettings};
+use crate::fem::{Block, PlaneStrain, StructuredMesh, assemble};
+
+pub struct BlockScene {
+    dynamics: Dynamics,
+    mesh: StructuredMesh,
+    layout: Layout,
+}
+
+impl BlockScene {
+    pub fn new(case: &Case, spec: &BlockSpec) -> Result<Self, RunError> {
+        let mesh = StructuredMesh { width: spec.width, height: spec.height, nx: spec.nx, ny: spec.ny };
+        let material = PlaneStrain { youngs_modulus: spec.youngs_modulus, poisson_ratio: spec.poisson_ratio };
+        let Block { body, contact, .. } = assemble(
+            mesh,
+            material,
+            spec.density,
+            case.friction.clone(),
+            |x| spec.normal_traction.at(x, spec.width),
+            spec.base_velocity,
+        );
+        let settings = WilsonSettings {
+            theta: case.time.theta,
+            velocity_scale: spec.base_velocity.abs().max(f64::MIN_POSITIVE),
+            ..WilsonSettings::default()
+        };
+        let dynamics = Dynamics::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |p| p / 2))?;
+        let name_of = |probes: &[crate::case::Probe], index: usize| {
+            probes.iter().find(|p| p.index == index).map(|p| p.name.clone())
+        };
+        let dx = mesh.dx();
+        let layout = Layout {
+            kind: "block",
+            segments: (0..mesh.nx)
+                .map(|k| SegmentInfo {
+                    left: k as f64 * dx,
+                    right: (k + 1) as f64 * dx,
+                    name: name_of(&case.probes.segments, k),
+                })
+                .collect(),
+            surface_nodes: (0..=mesh.nx)
+                .map(|i| NodeInfo { x: i as f64 * dx, name: name_of(&case.probes.nodes, i) })
+                .collect(),
+            mesh: Some(mesh),
+            driving_velocity: spec.base_velocity.abs(),
+            force_unit: "N/m",
+        };
+        Ok(Self { dynamics, mesh, layout })
+    }
+
+    /// The integrator, for tests that inspect it.
+    pub fn dynamics(&self) -> &Dynamics {
+        &self.dynamics
+    }
+
+    /// Mutable integrator, for tests that set initial conditions.
+    pub fn dynamics_mut(&mut self) -> &mut Dynamics {
+        &mut self.dynamics
+    }
+
+    fn node_displacement(&self, id: usize) -> [f64; 2] {
+        match self.mesh.node_dofs(id) {
+            Some([x, y]) => [self.dynamics.state.displacement[x], self.dynamics.state.displacement[y]],
+            None => [0.0, 0.0],
+        }
+    }
+}
+
+impl Scene for BlockScene {
+    fn layout(&self) -> &Layout {
+        &self.layout
+    }
+
+    fn time(&self) -> f64 {
+        self.dynamics.state.time
+    }
+
+    fn advance(&mut self, dt: f64) -> Result<(), RunError> {
+        let (step, time) = (self.dynamics.state.step + 1, self.dynamics.state.time);
+        self.dynamics.step(dt).map_err(|e| step_error(e, step, time, |p| p / 2))
+    }
+
+    fn frame(&self, needs: Needs, dt: f64) -> Frame {
+        let d = &self.dynamics;
+        let s = &d.state;
+        let points = &d.contact.points;
+        let segments = (0..self.mesh.nx)
+            .map(|k| {
+                segment_sample(
+                    &d.contact.params,
+                    (2 * k..2 * k + 2).map(|p| (points[p].weight, s.contact[p], s.plastic_increment[p])),
+                    dt,
+                    needs.segment_state,
+                )
+            })
+            .collect();
+        let friction_force = points.iter().zip(&s.contact).map(|(p, c)| p.weight * c.traction_t).sum();
+        let surface_nodes = if needs.surface_nodes {
+            (0..=self.mesh.nx).map(|i| self.node_displacement(self.mesh.surface_node(i))).collect()
+        } else {
+            Vec::new()
+        };
+        let mesh =
+            if needs.mesh { (0..self.mesh.nodes()).map(|id| self.node_displacement(id)).collect() } else { Vec::new() };
+        Frame {
+            step: s.step,
+            time: s.time,
+            dt,
+            segments,
+            surface_nodes,
+            mesh,
+            friction_force,
+            base_displacement: d.contact.base_velocity * s.time,
+            block: None,
+        }
+    }
+}

@@ -1,0 +1,110 @@
+//! `kind = "point"`: the friction law alone, driven by a prescribed relative sliding velocity.
+
+use super::{Frame, Layout, Needs, RunError, Scene, SegmentInfo, friction_error, segment_sample};
+use crate::case::PointSpec;
+use crate::friction::{ContactState, FrictionParams, update};
+
+/// One contact point under constant normal traction and a piecewise-constant relative sliding
+/// velocity `v̄_t` (held at 0 after the last phase). Steps that straddle a phase change are
+/// split there, so each update sees a constant velocity.
+pub struct PointScene {
+    params: FrictionParams,
+    phases: Vec<(f64, f64)>,
+    layout: Layout,
+    state: ContactState,
+    time: f64,
+    step: u64,
+    last_increment: f64,
+    relative_slip: f64,
+}
+
+impl PointScene {
+    pub fn new(params: FrictionParams, spec: PointSpec) -> Self {
+        let first = spec.phases.iter().map(|p| p.velocity).find(|v| *v != 0.0).unwrap_or(-1.0);
+        // Sliding v̄_t > 0 loads f_t negatively (ḟ = -α_t v̄): f0 points against the first motion.
+        let state = ContactState::initial(&params, spec.normal_traction, -first);
+        let mut start = 0.0;
+        let phases = spec
+            .phases
+            .iter()
+            .map(|p| {
+                start += p.duration;
+                (start, p.velocity)
+            })
+            .collect();
+        let layout = Layout {
+            kind: "point",
+            segments: vec![SegmentInfo { left: 0.0, right: 0.0, name: None }],
+            surface_nodes: Vec::new(),
+            mesh: None,
+            driving_velocity: spec.phases.iter().fold(0.0_f64, |m, p| m.max(p.velocity.abs())),
+            force_unit: "Pa",
+        };
+        Self { params, phases, layout, state, time: 0.0, step: 0, last_increment: 0.0, relative_slip: 0.0 }
+    }
+
+    /// The contact state now.
+    pub fn state(&self) -> &ContactState {
+        &self.state
+    }
+
+    /// Relative sliding velocity at time `t` within phase ends `(end, velocity)`.
+    fn velocity_after(&self, t: f64) -> (f64, f64) {
+        for &(end, velocity) in &self.phases {
+            if t < end {
+                return (end, velocity);
+            }
+        }
+        (f64::INFINITY, 0.0)
+    }
+}
+
+impl Scene for PointScene {
+    fn layout(&self) -> &Layout {
+        &self.layout
+    }
+
+    fn time(&self) -> f64 {
+        self.time
+    }
+
+    fn advance(&mut self, dt: f64) -> Result<(), RunError> {
+        let target = self.time + dt;
+        let mut t = self.time;
+        let mut increment = 0.0;
+        while t < target {
+            let (end, velocity) = self.velocity_after(t);
+            // Snap to a phase end that is within rounding of the step's end.
+            let stop = if end < target - 1e-12 * target.max(1.0) { end } else { target };
+            let h = stop - t;
+            let updated = update(&self.params, &self.state, velocity * h, h)
+                .map_err(|e| friction_error(e, &self.state, self.step + 1, t))?;
+            self.state = updated.state;
+            self.relative_slip += velocity * h;
+            increment += updated.plastic_increment;
+            t = stop;
+        }
+        self.time = target;
+        self.step += 1;
+        self.last_increment = increment;
+        Ok(())
+    }
+
+    fn frame(&self, needs: Needs, dt: f64) -> Frame {
+        let sample = segment_sample(
+            &self.params,
+            std::iter::once((1.0, self.state, self.last_increment)),
+            dt,
+            needs.segment_state,
+        );
+        Frame {
+            step: self.step,
+            time: self.time,
+            dt,
+            segments: vec![sample],
+            friction_force: self.state.traction_t,
+            base_displacement: -self.relative_slip,
+            ..Frame::default()
+        }
+    }
+}

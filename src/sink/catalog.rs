@@ -1,0 +1,99 @@
+//! The event catalog sink: `<stem>.events.csv` and, for a block, `<stem>.ruptures.csv`.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use super::events::{EventDetector, Rupture, SlipEvent, ruptures};
+use super::{Ending, Sink, SinkError};
+use crate::scene::{Frame, Layout};
+
+/// Header of the events CSV.
+pub const EVENTS_HEADER: &str = "segment,onset_s,end_s,slip_m,peak_slip_rate_m_s,traction_before_pa,traction_after_pa";
+/// Header of the ruptures CSV.
+pub const RUPTURES_HEADER: &str = "onset_s,end_s,nucleation_segment,first_segment,last_segment,segments_slipped,max_slip_m,friction_force_drop_n_per_m";
+
+/// Writes the catalogs when the run ends (completed, failed or interrupted).
+pub struct CatalogSink {
+    events_path: PathBuf,
+    ruptures_path: Option<PathBuf>,
+    threshold: f64,
+    detector: Option<EventDetector>,
+}
+
+impl CatalogSink {
+    /// `ruptures_path` is used for block scenes only.
+    pub fn new(events_path: PathBuf, ruptures_path: Option<PathBuf>, threshold: f64) -> Self {
+        Self { events_path, ruptures_path, threshold, detector: None }
+    }
+}
+
+impl Sink for CatalogSink {
+    fn begin(&mut self, layout: &Layout) -> Result<(), SinkError> {
+        if layout.kind != "block" {
+            self.ruptures_path = None;
+        }
+        self.detector = Some(EventDetector::new(layout.segments.len(), self.threshold));
+        // Fail now, not after the run, if the file cannot be written.
+        write_file(&self.events_path, &events_csv(&[]))?;
+        if let Some(path) = &self.ruptures_path {
+            write_file(path, &ruptures_csv(&[]))?;
+        }
+        Ok(())
+    }
+
+    fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
+        if let Some(detector) = &mut self.detector {
+            detector.record(frame);
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, _ending: Ending) -> Result<(), SinkError> {
+        let Some(detector) = &mut self.detector else { return Ok(()) };
+        detector.finish();
+        write_file(&self.events_path, &events_csv(detector.events()))?;
+        if let Some(path) = &self.ruptures_path {
+            write_file(path, &ruptures_csv(&ruptures(detector.events())))?;
+        }
+        Ok(())
+    }
+}
+
+fn write_file(path: &PathBuf, text: &str) -> Result<(), SinkError> {
+    std::fs::write(path, text).map_err(|e| SinkError(format!("cannot write {}: {e}", path.display())))
+}
+
+/// The events CSV text.
+pub fn events_csv(events: &[SlipEvent]) -> String {
+    let mut out = String::from(EVENTS_HEADER);
+    out.push('\n');
+    for e in events {
+        let _ = writeln!(
+            out,
+            "{},{},{},{},{},{},{}",
+            e.segment, e.onset, e.end, e.slip, e.peak_slip_rate, e.traction_before, e.traction_after
+        );
+    }
+    out
+}
+
+/// The ruptures CSV text.
+pub fn ruptures_csv(ruptures: &[Rupture]) -> String {
+    let mut out = String::from(RUPTURES_HEADER);
+    out.push('\n');
+    for r in ruptures {
+        let _ = writeln!(
+            out,
+            "{},{},{},{},{},{},{},{}",
+            r.onset,
+            r.end,
+            r.nucleation_segment,
+            r.first_segment,
+            r.last_segment,
+            r.segments_slipped,
+            r.max_slip,
+            r.friction_force_drop
+        );
+    }
+    out
+}

@@ -1,0 +1,215 @@
+//! Slip events and ruptures detected from frames: no I/O here (see [`super::catalog`]).
+//!
+//! A segment slips while its plastic slip rate exceeds the threshold. The slip rate of a step,
+//! `Δp/Δt`, is the mean over the step, so it is placed at the step's midpoint; onsets and ends
+//! are where the linear interpolation between midpoints crosses the threshold, and the slip and
+//! traction there are interpolated between frames.
+
+use crate::scene::Frame;
+
+/// One slip event of one segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlipEvent {
+    pub segment: usize,
+    /// Time the slip rate rose through the threshold (s).
+    pub onset: f64,
+    /// Time it fell back below (s); the last frame's time if the run ended first.
+    pub end: f64,
+    /// Plastic slip between onset and end (m).
+    pub slip: f64,
+    /// Largest step-mean slip rate during the event (m/s).
+    pub peak_slip_rate: f64,
+    /// Segment tangential traction at the onset (Pa).
+    pub traction_before: f64,
+    /// Segment tangential traction at the end (Pa).
+    pub traction_after: f64,
+    /// Total friction force at the onset and end (N/m, or Pa per unit area).
+    pub friction_force_before: f64,
+    pub friction_force_after: f64,
+}
+
+/// Simultaneous slip events of neighbouring segments grouped into one rupture.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rupture {
+    pub onset: f64,
+    pub end: f64,
+    /// The segment that slipped first.
+    pub nucleation_segment: usize,
+    /// Leftmost and rightmost segments that slipped.
+    pub first_segment: usize,
+    pub last_segment: usize,
+    /// Number of distinct segments that slipped.
+    pub segments_slipped: usize,
+    /// Largest slip of a segment (m).
+    pub max_slip: f64,
+    /// Total friction force at the onset minus at the end (N/m).
+    pub friction_force_drop: f64,
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct Sample {
+    time: f64,
+    slip: f64,
+    traction: f64,
+    force: f64,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Open {
+    onset: f64,
+    slip_at_onset: f64,
+    traction_before: f64,
+    force_before: f64,
+    peak: f64,
+}
+
+#[derive(Debug, Clone, Default)]
+struct SegmentTrack {
+    /// Previous step's (midpoint, slip rate).
+    rate: Option<(f64, f64)>,
+    /// The last two frames.
+    previous: Option<Sample>,
+    current: Option<Sample>,
+    open: Option<Open>,
+}
+
+impl SegmentTrack {
+    /// Linear interpolation of the sampled history at `t`.
+    fn at(&self, t: f64) -> Sample {
+        let cur = self.current.expect("a frame was recorded");
+        match self.previous {
+            Some(prev) if t < cur.time && cur.time > prev.time => {
+                let w = ((t - prev.time) / (cur.time - prev.time)).clamp(0.0, 1.0);
+                Sample {
+                    time: t,
+                    slip: prev.slip + w * (cur.slip - prev.slip),
+                    traction: prev.traction + w * (cur.traction - prev.traction),
+                    force: prev.force + w * (cur.force - prev.force),
+                }
+            }
+            _ => Sample { time: t, ..cur },
+        }
+    }
+}
+
+/// Finds slip events in a stream of frames.
+#[derive(Debug, Clone)]
+pub struct EventDetector {
+    threshold: f64,
+    tracks: Vec<SegmentTrack>,
+    events: Vec<SlipEvent>,
+}
+
+impl EventDetector {
+    /// A detector for `segments` segments and a slip-rate threshold (m/s).
+    pub fn new(segments: usize, threshold: f64) -> Self {
+        Self { threshold, tracks: vec![SegmentTrack::default(); segments], events: Vec::new() }
+    }
+
+    /// Feeds one frame (the initial frame, with `dt = 0`, included).
+    pub fn record(&mut self, frame: &Frame) {
+        for (k, (track, seg)) in self.tracks.iter_mut().zip(&frame.segments).enumerate() {
+            let sample =
+                Sample { time: frame.time, slip: seg.slip, traction: seg.traction_t, force: frame.friction_force };
+            track.previous = track.current.replace(sample);
+            if frame.dt <= 0.0 {
+                continue;
+            }
+            let mid = frame.time - 0.5 * frame.dt;
+            let rate = seg.slip_rate;
+            let (t0, r0) = track.rate.unwrap_or((track.previous.map_or(0.0, |p| p.time), 0.0));
+            let crossing = |level: f64| if rate == r0 { mid } else { t0 + (level - r0) / (rate - r0) * (mid - t0) };
+            match track.open {
+                None if rate > self.threshold => {
+                    let onset = crossing(self.threshold).clamp(t0, mid);
+                    let at = track.at(onset);
+                    track.open = Some(Open {
+                        onset,
+                        slip_at_onset: at.slip,
+                        traction_before: at.traction,
+                        force_before: at.force,
+                        peak: rate,
+                    });
+                }
+                Some(ref mut open) if rate > self.threshold => open.peak = open.peak.max(rate),
+                Some(open) => {
+                    let end = crossing(self.threshold).clamp(t0, mid);
+                    let at = track.at(end);
+                    self.events.push(close(k, open, at));
+                    track.open = None;
+                }
+                None => {}
+            }
+            track.rate = Some((mid, rate));
+        }
+    }
+
+    /// Closes events still open at the last frame.
+    pub fn finish(&mut self) {
+        for (k, track) in self.tracks.iter_mut().enumerate() {
+            if let (Some(open), Some(last)) = (track.open.take(), track.current) {
+                self.events.push(close(k, open, last));
+            }
+        }
+        self.events.sort_by(|a, b| a.onset.total_cmp(&b.onset).then(a.segment.cmp(&b.segment)));
+    }
+
+    /// Events closed so far, by onset once [`Self::finish`] has run.
+    pub fn events(&self) -> &[SlipEvent] {
+        &self.events
+    }
+}
+
+fn close(segment: usize, open: Open, at: Sample) -> SlipEvent {
+    SlipEvent {
+        segment,
+        onset: open.onset,
+        end: at.time,
+        slip: at.slip - open.slip_at_onset,
+        peak_slip_rate: open.peak,
+        traction_before: open.traction_before,
+        traction_after: at.traction,
+        friction_force_before: open.force_before,
+        friction_force_after: at.force,
+    }
+}
+
+/// Groups events whose time intervals overlap (transitively) into ruptures.
+pub fn ruptures(events: &[SlipEvent]) -> Vec<Rupture> {
+    let mut sorted: Vec<&SlipEvent> = events.iter().collect();
+    sorted.sort_by(|a, b| a.onset.total_cmp(&b.onset));
+    let mut groups: Vec<Vec<&SlipEvent>> = Vec::new();
+    let mut group_end = f64::NEG_INFINITY;
+    for event in sorted {
+        match groups.last_mut() {
+            Some(group) if event.onset <= group_end => {
+                group.push(event);
+                group_end = group_end.max(event.end);
+            }
+            _ => {
+                groups.push(vec![event]);
+                group_end = event.end;
+            }
+        }
+    }
+    groups
+        .into_iter()
+        .map(|group| {
+            let first = group[0];
+            let last_ending = group.iter().max_by(|a, b| a.end.total_cmp(&b.end)).expect("non-empty group");
+            let mut segments: Vec<usize> = group.iter().map(|e| e.segment).collect();
+            segments.sort_unstable();
+            segments.dedup();
+            Rupture {
+                onset: first.onset,
+                end: last_ending.end,
+                nucleation_segment: first.segment,
+                first_segment: segments[0],
+                last_segment: segments[segments.len() - 1],
+                segments_slipped: segments.len(),
+                max_slip: group.iter().map(|e| e.slip).fold(0.0, f64::max),
+                friction_force_drop: first.friction_force_before - last_ending.friction_force_after,
+            }
+        })
+        .collect()
+}

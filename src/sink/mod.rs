@@ -1,0 +1,45 @@
+//! Sinks observe a run through one small interface: they say what they need in each frame,
+//! receive the layout once, every frame, and a final call that must leave their output valid
+//! whether the run completed, failed or was interrupted.
+
+pub mod catalog;
+pub mod events;
+
+use std::fmt;
+
+use crate::scene::{Frame, Layout, Needs};
+
+/// How a run ended, as the sinks are told.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ending {
+    Completed,
+    Failed,
+    Interrupted,
+}
+
+/// A sink could not write.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SinkError(pub String);
+
+impl fmt::Display for SinkError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.0)
+    }
+}
+
+impl std::error::Error for SinkError {}
+
+/// An observer of a run.
+pub trait Sink {
+    /// What this sink reads from frames beyond the always-present segment traction, slip and
+    /// slip rate.
+    fn needs(&self) -> Needs {
+        Needs::default()
+    }
+    /// Called once, before the initial frame.
+    fn begin(&mut self, layout: &Layout) -> Result<(), SinkError>;
+    /// Called for the initial frame and after every step.
+    fn record(&mut self, frame: &Frame) -> Result<(), SinkError>;
+    /// Called once at the end, however the run ended.
+    fn finish(&mut self, ending: Ending) -> Result<(), SinkError>;
+}

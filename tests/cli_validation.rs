@@ -1,0 +1,233 @@
+//! Every validation rule (issue 2): a malformed case or `--set` gives the exact message and
+//! exit code 2, before anything runs.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn binary() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_slipfront"))
+}
+
+fn case(name: &str) -> String {
+    format!("{}/cases/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scratch_dir(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("slipfront-cli-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs `slipfront run CASE --set ...` and returns (exit code, stderr).
+fn run_case(path: &str, sets: &[&str]) -> (i32, String) {
+    let out_dir = scratch_dir("out");
+    let mut cmd = binary();
+    cmd.arg("run").arg(path).arg("--quiet").arg("--out-dir").arg(&out_dir);
+    for s in sets {
+        cmd.arg("--set").arg(s);
+    }
+    let output = cmd.output().unwrap();
+    (output.status.code().unwrap_or(-1), String::from_utf8_lossy(&output.stderr).into_owned())
+}
+
+fn expect_invalid(path: &str, sets: &[&str], message: &str) {
+    let (code, stderr) = run_case(path, sets);
+    assert_eq!(code, 2, "--set {sets:?}: exit code {code}, stderr: {stderr}");
+    assert!(stderr.contains(message), "--set {sets:?}: expected `{message}` in:\n{stderr}");
+}
+
+#[test]
+fn friction_rules() {
+    let c = case("spring_block.toml");
+    let rules: &[(&str, &str)] = &[
+        ("friction.mu_k=0.5", "friction.mu_k = 0.5 must be less than friction.mu_s = 0.4"),
+        ("friction.mu_k=0.4", "friction.mu_k = 0.4 must be less than friction.mu_s = 0.4"),
+        ("friction.mu_s=-1", "friction.mu_s = -1 must be greater than 0"),
+        ("friction.mu_k=0", "friction.mu_k = 0 must be greater than 0"),
+        ("friction.alpha_n=0", "friction.alpha_n = 0 must be greater than 0"),
+        ("friction.alpha_t=-5", "friction.alpha_t = -5 must be greater than 0"),
+        ("friction.r=0", "friction.r = 0 must be greater than 0"),
+        ("friction.kappa=-1", "friction.kappa = -1 must be greater than or equal to 0"),
+        ("friction.m=0", "friction.m = 0 must be greater than 0"),
+        ("friction.xi=-0.1", "friction.xi = -0.1 must be greater than or equal to 0"),
+        ("friction.n=-2", "friction.n = -2 must be greater than 0"),
+        ("friction.f0=-1e-7", "friction.f0 = -0.0000001 must be greater than or equal to 0"),
+        (
+            "friction.structure0=2.5",
+            "friction.structure0 = 2.5 must lie in [1, friction.mu_s/friction.mu_k] = [1, 2] (the degree of structure 1/R*)",
+        ),
+        (
+            "friction.structure0=0.5",
+            "friction.structure0 = 0.5 must lie in [1, friction.mu_s/friction.mu_k] = [1, 2] (the degree of structure 1/R*)",
+        ),
+        ("friction.mu_s=nan", "friction.mu_s = NaN must be a finite number"),
+        ("friction.alpha_t=inf", "friction.alpha_t = inf must be a finite number"),
+        ("friction.structure0=-inf", "friction.structure0 = -inf must be a finite number"),
+    ];
+    for (set, message) in rules {
+        expect_invalid(&c, &[set], message);
+    }
+}
+
+#[test]
+fn time_rules() {
+    let c = case("spring_block.toml");
+    expect_invalid(&c, &["time.t_end=0"], "time.t_end = 0 must be greater than 0");
+    expect_invalid(&c, &["time.dt=-0.01"], "time.dt = -0.01 must be greater than 0");
+    expect_invalid(&c, &["time.dt=2000"], "time.dt = 2000 must not exceed time.t_end = 1000");
+    expect_invalid(
+        &c,
+        &["time.dt=1e-9"],
+        "time.dt = 0.000000001 gives 1.000e12 steps for time.t_end = 1000 s; at most 1e9 are allowed",
+    );
+    expect_invalid(
+        &c,
+        &["time.theta=1.2"],
+        "time.theta = 1.2 must lie in [1.37, 3] (Wilson's method is unconditionally stable for θ ≥ 1.37)",
+    );
+}
+
+#[test]
+fn scene_rules() {
+    let sb = case("spring_block.toml");
+    expect_invalid(&sb, &["scene.mass=0"], "scene.mass = 0 must be greater than 0");
+    expect_invalid(&sb, &["scene.stiffness=-500"], "scene.stiffness = -500 must be greater than 0");
+    expect_invalid(&sb, &["scene.velocity=nan"], "scene.velocity = NaN must be a finite number");
+    expect_invalid(&sb, &["scene.normal_traction=-1"], "scene.normal_traction = -1 must be greater than or equal to 0");
+    expect_invalid(&sb, &["events.slip_rate_threshold=0"], "events.slip_rate_threshold = 0 must be greater than 0");
+    expect_invalid(
+        &sb,
+        &["probes.nodes=[{name=\"N\", index=0}]"],
+        "probes.nodes[0].index = 0 is not allowed: a spring_block scene has no nodes",
+    );
+
+    let pt = case("point_loading.toml");
+    expect_invalid(&pt, &["scene.phases=[]"], "scene.phases = [] must list at least one {velocity, duration} phase");
+    expect_invalid(&pt, &["scene.phases.1.duration=0"], "scene.phases[1].duration = 0 must be greater than 0");
+    expect_invalid(&pt, &["scene.phases.0.velocity=inf"], "scene.phases[0].velocity = inf must be a finite number");
+    expect_invalid(&pt, &["scene.normal_traction=-3"], "scene.normal_traction = -3 must be greater than or equal to 0");
+}
+
+#[test]
+fn block_rules() {
+    let b = case("paper_triangular.toml");
+    expect_invalid(&b, &["scene.width=0"], "scene.width = 0 must be greater than 0");
+    expect_invalid(&b, &["scene.height=-1"], "scene.height = -1 must be greater than 0");
+    expect_invalid(&b, &["scene.nx=0"], "scene.nx = 0 must be at least 1");
+    expect_invalid(&b, &["scene.ny=0"], "scene.ny = 0 must be at least 1");
+    expect_invalid(&b, &["scene.youngs_modulus=0"], "scene.youngs_modulus = 0 must be greater than 0");
+    expect_invalid(&b, &["scene.poisson_ratio=0.5"], "scene.poisson_ratio = 0.5 must lie in [0, 0.5)");
+    expect_invalid(&b, &["scene.density=-1000"], "scene.density = -1000 must be greater than 0");
+    expect_invalid(&b, &["scene.base_velocity=inf"], "scene.base_velocity = inf must be a finite number");
+    expect_invalid(
+        &b,
+        &["scene.normal_traction.right=-10"],
+        "scene.normal_traction.right = -10 must be greater than or equal to 0",
+    );
+    expect_invalid(
+        &b,
+        &["scene.normal_traction={kind=\"table\", x=[0, 5], value=[1, 2]}"],
+        "scene.normal_traction.x = [0.0, 5.0] must cover the contact, from 0 to scene.width = 10 m",
+    );
+    expect_invalid(
+        &b,
+        &["scene.normal_traction={kind=\"table\", x=[0, 10, 5], value=[1, 2, 3]}"],
+        "scene.normal_traction.x = [0.0, 10.0, 5.0] must be finite and strictly increasing",
+    );
+    expect_invalid(
+        &b,
+        &["scene.normal_traction={kind=\"table\", x=[0, 10], value=[1]}"],
+        "scene.normal_traction.x = [0.0, 10.0] must have at least 2 entries, as many as scene.normal_traction.value (1)",
+    );
+    expect_invalid(
+        &b,
+        &["probes.segments=[{name=\"Z\", index=10}]"],
+        "probes.segments[0].index = 10 must be below 10 (the scene has 10 segments, numbered from 0 at the left)",
+    );
+    expect_invalid(&b, &["probes.nodes=[{name=\" \", index=3}]"], "probes.nodes[0].name = \" \" must not be empty");
+}
+
+#[test]
+fn several_violations_are_all_reported() {
+    let (code, stderr) = run_case(&case("spring_block.toml"), &["friction.mu_k=0.5", "time.dt=-1"]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("friction.mu_k = 0.5 must be less than friction.mu_s = 0.4"), "{stderr}");
+    assert!(stderr.contains("time.dt = -1 must be greater than 0"), "{stderr}");
+}
+
+#[test]
+fn malformed_files_and_overrides() {
+    let c = case("spring_block.toml");
+    // Shape errors from the deserializer, with the key path.
+    expect_invalid(&c, &["friction.mu_s=\"high\""], "friction.mu_s: invalid type: string \"high\", expected f64");
+    expect_invalid(&c, &["friction.mu_x=1"], "friction.mu_x: unknown field `mu_x`");
+    expect_invalid(
+        &c,
+        &["scene.kind=\"pendulum\""],
+        "scene.kind: unknown variant `pendulum`, expected one of `point`, `spring_block`, `block`",
+    );
+    expect_invalid(&c, &["time.dt=[1, 2]"], "time.dt: invalid type: sequence, expected f64");
+    expect_invalid(
+        &c,
+        &["friction.rstar_law=eq5"],
+        "friction.rstar_law: unknown variant `eq5`, expected `consistent` or `eq4`",
+    );
+    expect_invalid(
+        &c,
+        &["colour=1"],
+        "colour: unknown field `colour`, expected one of `friction`, `time`, `scene`, `events`, `probes`",
+    );
+    // Malformed --set arguments.
+    expect_invalid(&c, &["time.t_end"], "--set time.t_end: expected KEY=VALUE, e.g. --set time.t_end=50");
+    expect_invalid(&c, &["=5"], "--set =5: the key must be a dotted path such as time.t_end");
+    expect_invalid(&c, &["time..dt=5"], "--set time..dt=5: the key must be a dotted path such as time.t_end");
+    expect_invalid(&c, &["time.dt="], "--set time.dt=: the value is empty");
+    expect_invalid(&c, &["time.dt.x=1"], "--set time.dt.x: time.dt is a value, not a table, so it has no keys");
+    let pt = case("point_loading.toml");
+    expect_invalid(
+        &pt,
+        &["scene.phases.9.velocity=1"],
+        "--set scene.phases.9.velocity: scene.phases.9 must index an existing item of the array (0 to 3)",
+    );
+
+    // Files: missing keys, unknown keys, not TOML, missing file.
+    let dir = scratch_dir("files");
+    let text = std::fs::read_to_string(&c).unwrap();
+    let missing = dir.join("missing.toml");
+    std::fs::write(&missing, text.replace("mu_s = 0.4", "")).unwrap();
+    expect_invalid(missing.to_str().unwrap(), &[], "friction: TOML parse error at line 5, column 1");
+    expect_invalid(missing.to_str().unwrap(), &[], "missing field `mu_s`");
+    let unknown = dir.join("unknown.toml");
+    std::fs::write(&unknown, text.replace("[time]", "[time]\nstep = 3")).unwrap();
+    expect_invalid(unknown.to_str().unwrap(), &[], "time.step: TOML parse error at line 20, column 1");
+    expect_invalid(unknown.to_str().unwrap(), &[], "unknown field `step`, expected one of `t_end`, `dt`, `theta`");
+    let garbage = dir.join("garbage.toml");
+    std::fs::write(&garbage, "[friction\nmu_s = ").unwrap();
+    expect_invalid(garbage.to_str().unwrap(), &[], "TOML parse error at line 1");
+    expect_invalid(dir.join("absent.toml").to_str().unwrap(), &[], "cannot read case file");
+}
+
+#[test]
+fn an_unwritable_output_folder_is_refused_before_solving() {
+    let dir = scratch_dir("ro");
+    let blocker = dir.join("file");
+    std::fs::write(&blocker, b"x").unwrap();
+    let output = binary()
+        .args(["run", &case("spring_block.toml"), "--quiet", "--out-dir"])
+        .arg(blocker.join("sub"))
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("cannot create output folder"), "{stderr}");
+}
+
+#[test]
+fn bad_arguments_exit_with_two() {
+    let output = binary().args(["run"]).output().unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    let output = binary().args(["run", "x.toml", "--frobnicate"]).output().unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    let output = binary().args(["launch"]).output().unwrap();
+    assert_eq!(output.status.code(), Some(2));
+}
