@@ -89,8 +89,12 @@ fn run_command(args: RunArgs) -> ExitCode {
         Ok(scene) => scene,
         Err(e) => return fail(EXIT_FAILED, e),
     };
-    let mut sinks: Vec<Box<dyn Sink>> =
-        vec![Box::new(CatalogSink::new(events_path.clone(), Some(ruptures_path.clone()), case.slip_rate_threshold()))];
+    let mut sinks: Vec<Box<dyn Sink>> = vec![Box::new(CatalogSink::new(
+        events_path.clone(),
+        Some(ruptures_path.clone()),
+        case.slip_rate_threshold(),
+        case.events.merge_within,
+    ))];
     let interrupt = Arc::new(AtomicBool::new(false));
     {
         let flag = interrupt.clone();

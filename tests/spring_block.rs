@@ -15,7 +15,7 @@ fn case_with(overrides: &[&str]) -> Case {
 /// `(t, x)` at every step.
 fn run(case: &Case) -> (Vec<slipfront::sink::events::SlipEvent>, Vec<(f64, f64, f64)>) {
     let mut scene = scene::build(case).unwrap();
-    let mut detector = EventDetector::new(1, case.slip_rate_threshold());
+    let mut detector = EventDetector::new(1, case.slip_rate_threshold(), case.events.merge_within);
     let mut history = Vec::new();
     let frame = scene.frame(Needs::default(), 0.0);
     detector.record(&frame);

@@ -22,6 +22,7 @@ fn library_amplification(omega: f64) -> DMatrix<f64> {
             points: Vec::new(),
             traction_n: Vec::new(),
             base_velocity: 0.0,
+            base_ramp: 0.0,
             loading_direction: 1.0,
         };
         let settings = WilsonSettings { theta: THETA, tolerance: 1e-14, velocity_scale: 1.0, max_iterations: 10 };

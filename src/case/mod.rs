@@ -105,6 +105,7 @@ impl Case {
         if let Some(threshold) = self.events.slip_rate_threshold {
             events.positive("slip_rate_threshold", threshold);
         }
+        events.non_negative("merge_within", self.events.merge_within);
         all.extend(events.violations);
         let mut probes = Checker::new("probes");
         self.probes.check(&self.scene, &mut probes);

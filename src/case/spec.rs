@@ -145,6 +145,10 @@ pub struct BlockSpec {
     pub density: f64,
     /// Velocity of the base along x (m/s).
     pub base_velocity: f64,
+    /// Time over which the base accelerates smoothly from rest to `base_velocity` (s); 0 (the
+    /// default) starts it impulsively.
+    #[serde(default)]
+    pub base_ramp_time: f64,
     /// Normal traction on the contact, held constant (Pa).
     pub normal_traction: NormalTractionSpec,
 }
@@ -265,6 +269,7 @@ impl SceneSpec {
                 }
                 c.positive("density", b.density);
                 c.finite("base_velocity", b.base_velocity);
+                c.non_negative("base_ramp_time", b.base_ramp_time);
                 b.normal_traction.check(b.width, c);
             }
         }
@@ -278,6 +283,10 @@ pub struct EventsSpec {
     /// A segment slips while its plastic slip rate exceeds this (m/s); default 10 × the
     /// driving velocity.
     pub slip_rate_threshold: Option<f64>,
+    /// A segment's event starting less than this after its previous one ended continues it (s);
+    /// default 0: every threshold crossing is an event.
+    #[serde(default)]
+    pub merge_within: f64,
 }
 
 /// `[probes]`: names for nodes and segments of a block, so that figures and recordings can

@@ -42,8 +42,36 @@ pub struct ContactBoundary {
     pub points: Vec<ContactPoint>,
     /// Normal traction `f_n ≥ 0` at each point (Pa), held constant.
     pub traction_n: Vec<f64>,
-    /// Velocity of the base (main body) along `x` (m/s).
+    /// Velocity of the base (main body) along `x` (m/s), reached after `base_ramp`.
     pub base_velocity: f64,
+    /// Time over which the base accelerates smoothly from rest (s); 0 starts it impulsively.
+    pub base_ramp: f64,
     /// Direction (±1) in which the drive loads `f_t`: sets the sign of the initial traction `f0`.
     pub loading_direction: f64,
+}
+
+impl ContactBoundary {
+    /// Base velocity at `t`: `v s³ (10 - 15 s + 6 s²)`, `s = t/T`, during the ramp `T`, then
+    /// `v`. Acceleration and jerk are continuous and vanish at both ends of the ramp, so the
+    /// start excites the stiff contact modes as little as a polynomial ramp can.
+    pub fn base_velocity_at(&self, t: f64) -> f64 {
+        let ramp = self.base_ramp;
+        if t >= ramp {
+            self.base_velocity
+        } else {
+            let s = t / ramp;
+            self.base_velocity * s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
+        }
+    }
+
+    /// Base displacement at `t`, the integral of [`Self::base_velocity_at`].
+    pub fn base_displacement_at(&self, t: f64) -> f64 {
+        let ramp = self.base_ramp;
+        if t >= ramp {
+            self.base_velocity * (t - 0.5 * ramp)
+        } else {
+            let s = t / ramp;
+            self.base_velocity * ramp * s * s * s * s * (2.5 - 3.0 * s + s * s)
+        }
+    }
 }

@@ -290,10 +290,10 @@ impl Dynamics {
                 self.body.mass[i] * acceleration[i] - t_theta * self.body.load_rate[i] + self.initial_contact_force[i];
         }
         let params = &self.contact.params;
-        let base = self.contact.base_velocity;
+        let base = self.contact.base_displacement_at(t_theta) - self.contact.base_displacement_at(s.time);
         let mut contact_stiffness = Vec::with_capacity(self.contact.points.len());
         for (k, (point, state)) in self.contact.points.iter().zip(&s.contact).enumerate() {
-            let slip = point.interpolate(du_theta) - base * tau;
+            let slip = point.interpolate(du_theta) - base;
             let updated = update(params, state, slip, tau).map_err(|error| StepError::Friction {
                 point: k,
                 state: *state,
@@ -339,8 +339,8 @@ impl Dynamics {
     fn finish_step(&mut self, dt: f64, acceleration_theta: &[f64]) -> Result<(), StepError> {
         let n = self.body.dofs();
         let theta = self.settings.theta;
-        let base = self.contact.base_velocity;
         let old = self.state.clone();
+        let base = self.contact.base_displacement_at(old.time + dt) - self.contact.base_displacement_at(old.time);
         let s = &mut self.state;
         let mut du = vec![0.0; n];
         for i in 0..n {
@@ -354,7 +354,7 @@ impl Dynamics {
             return Err(StepError::NonFinite);
         }
         for (k, point) in self.contact.points.iter().enumerate() {
-            let slip = point.interpolate(&du) - base * dt;
+            let slip = point.interpolate(&du) - base;
             let updated = update(&self.contact.params, &old.contact[k], slip, dt)
                 .map_err(|error| StepError::Friction { point: k, state: old.contact[k], error })?;
             s.contact[k] = updated.state;
@@ -379,7 +379,8 @@ impl Dynamics {
 
         if let Some(mut ledger) = self.ledger.take() {
             let power_base = |state: &State| -> f64 {
-                self.contact.points.iter().zip(&state.contact).map(|(p, c)| p.weight * c.traction_t * base).sum()
+                let v = self.contact.base_velocity_at(state.time);
+                self.contact.points.iter().zip(&state.contact).map(|(p, c)| p.weight * c.traction_t * v).sum()
             };
             let power_load = |state: &State| -> f64 {
                 self.body.load_rate.iter().zip(&state.velocity).map(|(f, v)| state.time * f * v).sum()

@@ -25,7 +25,8 @@ impl Block {
 
 /// Assembles the block. The top row is fixed; the bottom edge is the contact boundary with
 /// two Gauss points per segment, each with its own friction state and the normal traction
-/// `normal_traction(x)`; the base moves at `base_velocity` along x.
+/// `normal_traction(x)`; the base accelerates smoothly from rest over `base_ramp` seconds to
+/// `base_velocity` along x.
 ///
 /// Normal direction: the base is rigid, and the contact's elastic normal modulus `α_n` (the
 /// normal part of `C^e`) ties the bottom to it, so a change of normal displacement changes the
@@ -40,6 +41,7 @@ pub fn assemble(
     params: FrictionParams,
     normal_traction: impl Fn(f64) -> f64,
     base_velocity: f64,
+    base_ramp: f64,
 ) -> Block {
     let (dx, dy) = (mesh.dx(), mesh.dy());
     // All elements are the same rectangle: one element matrix serves.
@@ -92,6 +94,7 @@ pub fn assemble(
     }
     let body = LinearBody { mass, stiffness: SymmetricMatrix::from_triplets(n, &triplets), load_rate: vec![0.0; n] };
     let loading_direction = if base_velocity < 0.0 { -1.0 } else { 1.0 };
-    let contact = ContactBoundary { params, points, traction_n: tractions, base_velocity, loading_direction };
+    let contact =
+        ContactBoundary { params, points, traction_n: tractions, base_velocity, base_ramp, loading_direction };
     Block { mesh, body, contact }
 }

@@ -1,7 +1,9 @@
 //! `kind = "block"`: the paper's §3 analysis, a plane-strain elastic block whose bottom is the
 //! frictional contact against a moving rigid base.
 
-use super::{Frame, Layout, Needs, NodeInfo, RunError, Scene, SegmentInfo, segment_sample, step_error};
+use super::{
+    Frame, Layout, Needs, NodeInfo, RunError, Scene, SegmentInfo, advance_dynamics, segment_sample, step_error,
+};
 use crate::case::{BlockSpec, Case};
 use crate::dynamics::{Dynamics, WilsonSettings};
 use crate::fem::{Block, PlaneStrain, StructuredMesh, assemble};
@@ -23,6 +25,7 @@ impl BlockScene {
             case.friction.clone(),
             |x| spec.normal_traction.at(x, spec.width),
             spec.base_velocity,
+            spec.base_ramp_time,
         );
         let settings = WilsonSettings {
             theta: case.time.theta,
@@ -81,8 +84,7 @@ impl Scene for BlockScene {
     }
 
     fn advance(&mut self, dt: f64) -> Result<(), RunError> {
-        let (step, time) = (self.dynamics.state.step + 1, self.dynamics.state.time);
-        self.dynamics.step(dt).map_err(|e| step_error(e, step, time, |p| p / 2))
+        advance_dynamics(&mut self.dynamics, dt, |p| p / 2)
     }
 
     fn frame(&self, needs: Needs, dt: f64) -> Frame {
@@ -115,7 +117,7 @@ impl Scene for BlockScene {
             surface_nodes,
             mesh,
             friction_force,
-            base_displacement: d.contact.base_velocity * s.time,
+            base_displacement: d.contact.base_displacement_at(s.time),
             block: None,
         }
     }

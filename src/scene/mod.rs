@@ -181,6 +181,17 @@ pub fn segment_sample(
     sample
 }
 
+/// Advances a dynamic scene's integrator by `dt`, reporting a failure with the step, the time
+/// it started from and the segment of the contact point involved.
+pub fn advance_dynamics(
+    dynamics: &mut crate::dynamics::Dynamics,
+    dt: f64,
+    segment_of_point: impl Fn(usize) -> usize,
+) -> Result<(), RunError> {
+    let (step, time) = (dynamics.state.step + 1, dynamics.state.time);
+    dynamics.step(dt).map_err(|e| step_error(e, step, time, segment_of_point))
+}
+
 /// Turns a dynamic step failure into a [`RunError`] for the scene's segment numbering.
 pub fn step_error(error: StepError, step: u64, time: f64, segment_of_point: impl Fn(usize) -> usize) -> RunError {
     let segment = match &error {

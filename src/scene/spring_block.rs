@@ -1,7 +1,7 @@
 //! `kind = "spring_block"`: a rigid block on the frictional contact, pulled through a spring
 //! whose far end moves at a constant velocity (Ozaki & Hashiguchi 2010).
 
-use super::{Frame, Layout, Needs, RunError, Scene, SegmentInfo, segment_sample, step_error};
+use super::{Frame, Layout, Needs, RunError, Scene, SegmentInfo, advance_dynamics, segment_sample, step_error};
 use crate::case::{Case, SpringBlockSpec};
 use crate::dynamics::sparse::SymmetricMatrix;
 use crate::dynamics::{ContactBoundary, ContactPoint, Dynamics, LinearBody, WilsonSettings};
@@ -27,6 +27,7 @@ impl SpringBlockScene {
             points: vec![ContactPoint::single(0)],
             traction_n: vec![spec.normal_traction],
             base_velocity: 0.0,
+            base_ramp: 0.0,
             loading_direction: if spec.velocity < 0.0 { 1.0 } else { -1.0 },
         };
         let settings = WilsonSettings {
@@ -62,8 +63,7 @@ impl Scene for SpringBlockScene {
     }
 
     fn advance(&mut self, dt: f64) -> Result<(), RunError> {
-        let (step, time) = (self.dynamics.state.step + 1, self.dynamics.state.time);
-        self.dynamics.step(dt).map_err(|e| step_error(e, step, time, |_| 0))
+        advance_dynamics(&mut self.dynamics, dt, |_| 0)
     }
 
     fn frame(&self, needs: Needs, dt: f64) -> Frame {

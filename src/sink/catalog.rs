@@ -17,13 +17,15 @@ pub struct CatalogSink {
     events_path: PathBuf,
     ruptures_path: Option<PathBuf>,
     threshold: f64,
+    merge_within: f64,
     detector: Option<EventDetector>,
 }
 
 impl CatalogSink {
-    /// `ruptures_path` is used for block scenes only.
-    pub fn new(events_path: PathBuf, ruptures_path: Option<PathBuf>, threshold: f64) -> Self {
-        Self { events_path, ruptures_path, threshold, detector: None }
+    /// `ruptures_path` is used for block scenes only; see [`EventDetector::new`] for the
+    /// threshold (m/s) and merge window (s).
+    pub fn new(events_path: PathBuf, ruptures_path: Option<PathBuf>, threshold: f64, merge_within: f64) -> Self {
+        Self { events_path, ruptures_path, threshold, merge_within, detector: None }
     }
 }
 
@@ -32,7 +34,7 @@ impl Sink for CatalogSink {
         if layout.kind != "block" {
             self.ruptures_path = None;
         }
-        self.detector = Some(EventDetector::new(layout.segments.len(), self.threshold));
+        self.detector = Some(EventDetector::new(layout.segments.len(), self.threshold, self.merge_within));
         // Fail now, not after the run, if the file cannot be written.
         write_file(&self.events_path, &events_csv(&[]))?;
         if let Some(path) = &self.ruptures_path {

@@ -3,7 +3,9 @@
 //! A segment slips while its plastic slip rate exceeds the threshold. The slip rate of a step,
 //! `Δp/Δt`, is the mean over the step, so it is placed at the step's midpoint; onsets and ends
 //! are where the linear interpolation between midpoints crosses the threshold, and the slip and
-//! traction there are interpolated between frames.
+//! traction there are interpolated between frames. With a merge window `w > 0`, a segment's
+//! event that starts less than `w` after its previous one ended continues that event (the slip
+//! rate of a decelerating segment can flicker about the threshold in its tail).
 
 use crate::scene::Frame;
 
@@ -26,6 +28,9 @@ pub struct SlipEvent {
     /// Total friction force at the onset and end (N/m, or Pa per unit area).
     pub friction_force_before: f64,
     pub friction_force_after: f64,
+    /// Segment degree of structure `1/R*` at the onset, when the frames carried it
+    /// ([`crate::scene::Needs::segment_state`]).
+    pub structure_before: Option<f64>,
 }
 
 /// Simultaneous slip events of neighbouring segments grouped into one rupture.
@@ -52,6 +57,8 @@ struct Sample {
     slip: f64,
     traction: f64,
     force: f64,
+    /// 0 when the frame did not carry it.
+    structure: f64,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -60,6 +67,7 @@ struct Open {
     slip_at_onset: f64,
     traction_before: f64,
     force_before: f64,
+    structure_before: f64,
     peak: f64,
 }
 
@@ -71,6 +79,8 @@ struct SegmentTrack {
     previous: Option<Sample>,
     current: Option<Sample>,
     open: Option<Open>,
+    /// The last closed event, held while a merge could still extend it.
+    closed: Option<(Open, Sample)>,
 }
 
 impl SegmentTrack {
@@ -85,6 +95,7 @@ impl SegmentTrack {
                     slip: prev.slip + w * (cur.slip - prev.slip),
                     traction: prev.traction + w * (cur.traction - prev.traction),
                     force: prev.force + w * (cur.force - prev.force),
+                    structure: prev.structure + w * (cur.structure - prev.structure),
                 }
             }
             _ => Sample { time: t, ..cur },
@@ -96,21 +107,28 @@ impl SegmentTrack {
 #[derive(Debug, Clone)]
 pub struct EventDetector {
     threshold: f64,
+    merge_within: f64,
     tracks: Vec<SegmentTrack>,
     events: Vec<SlipEvent>,
 }
 
 impl EventDetector {
-    /// A detector for `segments` segments and a slip-rate threshold (m/s).
-    pub fn new(segments: usize, threshold: f64) -> Self {
-        Self { threshold, tracks: vec![SegmentTrack::default(); segments], events: Vec::new() }
+    /// A detector for `segments` segments and a slip-rate threshold (m/s), merging a segment's
+    /// events separated by less than `merge_within` (s; 0 merges nothing).
+    pub fn new(segments: usize, threshold: f64, merge_within: f64) -> Self {
+        Self { threshold, merge_within, tracks: vec![SegmentTrack::default(); segments], events: Vec::new() }
     }
 
     /// Feeds one frame (the initial frame, with `dt = 0`, included).
     pub fn record(&mut self, frame: &Frame) {
         for (k, (track, seg)) in self.tracks.iter_mut().zip(&frame.segments).enumerate() {
-            let sample =
-                Sample { time: frame.time, slip: seg.slip, traction: seg.traction_t, force: frame.friction_force };
+            let sample = Sample {
+                time: frame.time,
+                slip: seg.slip,
+                traction: seg.traction_t,
+                force: frame.friction_force,
+                structure: seg.structure,
+            };
             track.previous = track.current.replace(sample);
             if frame.dt <= 0.0 {
                 continue;
@@ -122,20 +140,30 @@ impl EventDetector {
             match track.open {
                 None if rate > self.threshold => {
                     let onset = crossing(self.threshold).clamp(t0, mid);
-                    let at = track.at(onset);
-                    track.open = Some(Open {
-                        onset,
-                        slip_at_onset: at.slip,
-                        traction_before: at.traction,
-                        force_before: at.force,
-                        peak: rate,
-                    });
+                    track.open = match track.closed.take() {
+                        Some((previous, end)) if onset - end.time < self.merge_within => {
+                            Some(Open { peak: previous.peak.max(rate), ..previous })
+                        }
+                        earlier => {
+                            if let Some((previous, end)) = earlier {
+                                self.events.push(close(k, previous, end));
+                            }
+                            let at = track.at(onset);
+                            Some(Open {
+                                onset,
+                                slip_at_onset: at.slip,
+                                traction_before: at.traction,
+                                force_before: at.force,
+                                structure_before: at.structure,
+                                peak: rate,
+                            })
+                        }
+                    };
                 }
                 Some(ref mut open) if rate > self.threshold => open.peak = open.peak.max(rate),
                 Some(open) => {
                     let end = crossing(self.threshold).clamp(t0, mid);
-                    let at = track.at(end);
-                    self.events.push(close(k, open, at));
+                    track.closed = Some((open, track.at(end)));
                     track.open = None;
                 }
                 None => {}
@@ -147,6 +175,9 @@ impl EventDetector {
     /// Closes events still open at the last frame.
     pub fn finish(&mut self) {
         for (k, track) in self.tracks.iter_mut().enumerate() {
+            if let Some((previous, end)) = track.closed.take() {
+                self.events.push(close(k, previous, end));
+            }
             if let (Some(open), Some(last)) = (track.open.take(), track.current) {
                 self.events.push(close(k, open, last));
             }
@@ -154,7 +185,7 @@ impl EventDetector {
         self.events.sort_by(|a, b| a.onset.total_cmp(&b.onset).then(a.segment.cmp(&b.segment)));
     }
 
-    /// Events closed so far, by onset once [`Self::finish`] has run.
+    /// Events closed so far (all of them, by onset, once [`Self::finish`] has run).
     pub fn events(&self) -> &[SlipEvent] {
         &self.events
     }
@@ -171,6 +202,7 @@ fn close(segment: usize, open: Open, at: Sample) -> SlipEvent {
         traction_after: at.traction,
         friction_force_before: open.force_before,
         friction_force_after: at.force,
+        structure_before: (open.structure_before > 0.0).then_some(open.structure_before),
     }
 }
 

@@ -4,6 +4,7 @@
 
 pub mod catalog;
 pub mod events;
+pub mod observations;
 
 use std::fmt;
 

@@ -1,0 +1,83 @@
+//! The paper's four observations (MODEL.md, §3.3 of the paper) measured on an event catalog, so
+//! that a sweep, a test and a user's own study judge a run the same way.
+//!
+//! Definitions: the left and right ends are the first and last segments; a segment's re-slip is
+//! any slip after its first; ruptures "nucleated on the left" start in the left third of the
+//! surface (the paper's segments A, B) and stay "local" if they do not reach the right third
+//! (E, F); a rupture "reaches the whole surface" if every segment slipped.
+
+use super::events::{Rupture, SlipEvent};
+
+/// What the catalog says about the paper's observations.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Observations {
+    pub segments: usize,
+    /// Onsets of the left end's slips (s).
+    pub left_onsets: Vec<f64>,
+    /// `1/R*` before each of the left end's re-slips.
+    pub left_reslip_structure: Vec<f64>,
+    /// Slip of each of the left end's events (m).
+    pub left_slips: Vec<f64>,
+    pub right_onsets: Vec<f64>,
+    /// `1/R*` before each of the right end's slips.
+    pub right_structure: Vec<f64>,
+    pub right_slips: Vec<f64>,
+    /// Ruptures nucleated in the left third that reached the right third.
+    pub left_ruptures_escaping: usize,
+    /// Ruptures nucleated in the left third.
+    pub left_ruptures: usize,
+    /// Ruptures that reached the right end without covering the whole surface.
+    pub right_ruptures_partial: usize,
+    /// Ruptures that covered the whole surface.
+    pub whole_ruptures: usize,
+}
+
+impl Observations {
+    /// Measures a catalog of `segments` segments; events need `structure_before`.
+    pub fn measure(events: &[SlipEvent], ruptures: &[Rupture], segments: usize) -> Self {
+        let of = |segment: usize| events.iter().filter(move |e| e.segment == segment);
+        let structure = |e: &SlipEvent| e.structure_before.unwrap_or(f64::NAN);
+        let third = segments / 3;
+        Self {
+            segments,
+            left_onsets: of(0).map(|e| e.onset).collect(),
+            left_reslip_structure: of(0).skip(1).map(structure).collect(),
+            left_slips: of(0).map(|e| e.slip).collect(),
+            right_onsets: of(segments - 1).map(|e| e.onset).collect(),
+            right_structure: of(segments - 1).map(structure).collect(),
+            right_slips: of(segments - 1).map(|e| e.slip).collect(),
+            left_ruptures_escaping: ruptures
+                .iter()
+                .filter(|r| r.nucleation_segment < third && r.last_segment >= segments - third)
+                .count(),
+            left_ruptures: ruptures.iter().filter(|r| r.nucleation_segment < third).count(),
+            right_ruptures_partial: ruptures
+                .iter()
+                .filter(|r| r.last_segment == segments - 1 && r.segments_slipped < segments)
+                .count(),
+            whole_ruptures: ruptures.iter().filter(|r| r.segments_slipped == segments).count(),
+        }
+    }
+
+    /// A single number that is 0 when every observation holds as the paper states it:
+    /// 5 slips at the left end re-slipping at `1/R*` ≈ 1.5, one slip at the right end at
+    /// `1/R*` ≈ 1.9, no escaping left rupture, no partial rupture through the right end.
+    pub fn misfit(&self) -> f64 {
+        let mean = |v: &[f64]| if v.is_empty() { f64::NAN } else { v.iter().sum::<f64>() / v.len() as f64 };
+        let z_left = mean(&self.left_reslip_structure);
+        let z_right = mean(&self.right_structure);
+        (self.left_onsets.len() as f64 - 5.0).abs()
+            + 2.0 * (self.right_onsets.len() as f64 - 1.0).abs()
+            + if z_left.is_nan() { 5.0 } else { (z_left - 1.5).abs() / 0.1 }
+            + if z_right.is_nan() { 5.0 } else { (z_right - 1.9).abs() / 0.05 }
+            + 2.0 * (self.left_ruptures_escaping + self.right_ruptures_partial) as f64
+    }
+}
+
+/// Median of a non-empty list.
+pub fn median(values: &[f64]) -> f64 {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
+}

@@ -1,0 +1,118 @@
+//! The plane-strain block (issue 3): closed forms and hand derivations.
+
+use slipfront::case::SceneSpec;
+use slipfront::case::{self, Case};
+use slipfront::scene::block::BlockScene;
+use slipfront::scene::{Needs, Scene};
+
+fn paper_case(overrides: &[&str]) -> Case {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/cases/paper_triangular.toml")).unwrap();
+    let owned: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    case::from_str(&text, &owned).unwrap()
+}
+
+fn block_scene(case: &Case) -> BlockScene {
+    let SceneSpec::Block(spec) = &case.scene else { panic!("a block case") };
+    BlockScene::new(case, spec).unwrap()
+}
+
+/// Stuck limit (MODEL.md): the block is a shear column of stiffness G/H per unit area in
+/// series with the contact spring α_t, so once transients decay the total friction force is
+/// `W u_base / (H/G + 1/α_t)`. One element high (as the paper's mesh), a Q4 strip with ν = 0 is
+/// exactly such a column. (Several elements high, the mesh resolves the traction-free ends,
+/// where the shear stress vanishes: a 20 × 4 mesh carries 5 % less, which is physics the
+/// closed form leaves out.)
+#[test]
+fn stuck_contact_carries_the_shear_column_force() {
+    for (nx, ny, dt) in [(10, 1, 0.01_f64), (40, 1, 0.01)] {
+        let case = paper_case(&[
+            "friction.mu_s=400",
+            "friction.mu_k=200",
+            "scene.normal_traction={kind=\"uniform\", value=1000}",
+            &format!("scene.nx={nx}"),
+            &format!("scene.ny={ny}"),
+            "time.t_end=50",
+            &format!("time.dt={dt}"),
+        ]);
+        let mut scene = block_scene(&case);
+        let (w, h, g, alpha) = (10.0, 1.0, 500.0, 1.0e6);
+        let mut worst: f64 = 0.0;
+        let steps = (50.0 / dt).round() as usize;
+        for k in 1..=steps {
+            scene.advance(k as f64 * dt - scene.time()).unwrap();
+            if scene.time() >= 40.0 && k % 100 == 0 {
+                let frame = scene.frame(Needs::default(), dt);
+                let expected = w * frame.base_displacement / (h / g + 1.0 / alpha);
+                worst = worst.max((frame.friction_force - expected).abs() / expected);
+                // Nothing slips.
+                assert!(frame.segments.iter().all(|s| s.slip_rate < 1e-6));
+            }
+        }
+        println!("{nx}x{ny}: worst relative difference over t in [40, 50] s: {worst:e}");
+        assert!(worst < 5e-3, "{nx}x{ny}: stuck force differs from the closed form by {worst:e}");
+    }
+}
+
+/// Period of the bottom-left node's horizontal oscillation, from up-crossings of its mean.
+fn measured_period(case: &Case, initial_velocity: f64, dt: f64, periods: f64, expected: f64) -> f64 {
+    let mut scene = block_scene(case);
+    let mesh = scene.layout().mesh.unwrap();
+    {
+        let d = scene.dynamics_mut();
+        for i in 0..=mesh.nx {
+            let [x, _] = mesh.node_dofs(mesh.surface_node(i)).unwrap();
+            d.state.velocity[x] = initial_velocity;
+        }
+    }
+    let steps = (periods * expected / dt).round() as usize;
+    let mut samples = Vec::with_capacity(steps);
+    let needs = Needs { surface_nodes: true, ..Needs::default() };
+    for k in 1..=steps {
+        scene.advance(k as f64 * dt - scene.time()).unwrap();
+        samples.push((scene.time(), scene.frame(needs, dt).surface_nodes[0][0]));
+    }
+    let mean = samples.iter().map(|s| s.1).sum::<f64>() / samples.len() as f64;
+    let crossings: Vec<f64> = samples
+        .windows(2)
+        .filter(|w| w[0].1 < mean && w[1].1 >= mean)
+        .map(|w| w[0].0 + (mean - w[0].1) / (w[1].1 - w[0].1) * (w[1].0 - w[0].0))
+        .collect();
+    assert!(crossings.len() >= 4, "too few oscillations: {}", crossings.len());
+    (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f64
+}
+
+/// Free vibration of the one-element-high mesh, derived by hand. With `ν = 0` a uniform
+/// horizontal motion `U` of the bottom row under a fixed top is an exact uniform shear of each
+/// Q4 element, whose nodal forces are `τ dx/2` per element and node (`τ = G U/H`): an interior
+/// bottom node feels `G U dx/H` and carries the lumped mass `ρ dx H/2`, an end node half of
+/// both. So the mode is uniform and
+///
+/// * free bottom: `ω² = 2G/(ρH²)`,
+/// * stuck bottom (elastic contact, consistent matrix `α_t ∫ÑᵀÑ`, row sum `α_t dx`):
+///   `ω² = 2(G/H + α_t)/(ρH)`.
+///
+/// (The continuum's `V_s/4H` and `V_s/2H` differ: one element cannot represent the sine.)
+#[test]
+fn free_vibration_periods_match_the_hand_derived_values() {
+    let (rho, g, h, alpha): (f64, f64, f64, f64) = (1000.0, 500.0, 1.0, 1.0e6);
+    // Free bottom: no normal traction, so no shear is transmitted; the base is at rest.
+    let free = paper_case(&["scene.normal_traction={kind=\"uniform\", value=0}", "scene.base_velocity=0"]);
+    let expected_free = 2.0 * std::f64::consts::PI / (2.0 * g / (rho * h * h)).sqrt();
+    let dt = 1e-3 * expected_free;
+    let period = measured_period(&free, 1e-3, dt, 6.0, expected_free);
+    println!("free bottom: period {period} s, hand-derived {expected_free} s");
+    assert!((period - expected_free).abs() < 1e-3 * expected_free, "free: {period} vs {expected_free}");
+
+    // Stuck bottom: friction so strong that the contact stays elastic.
+    let stuck = paper_case(&[
+        "friction.mu_s=4000",
+        "friction.mu_k=2000",
+        "scene.normal_traction={kind=\"uniform\", value=1000}",
+        "scene.base_velocity=0",
+    ]);
+    let expected_stuck = 2.0 * std::f64::consts::PI / (2.0 * (g / h + alpha) / (rho * h)).sqrt();
+    let dt = 1e-3 * expected_stuck;
+    let period = measured_period(&stuck, 1e-6, dt, 6.0, expected_stuck);
+    println!("stuck bottom: period {period} s, hand-derived {expected_stuck} s");
+    assert!((period - expected_stuck).abs() < 1e-3 * expected_stuck, "stuck: {period} vs {expected_stuck}");
+}
