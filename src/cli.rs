@@ -89,12 +89,7 @@ fn run_command(args: RunArgs) -> ExitCode {
         Ok(scene) => scene,
         Err(e) => return fail(EXIT_FAILED, e),
     };
-    let mut sinks: Vec<Box<dyn Sink>> = vec![Box::new(CatalogSink::new(
-        events_path.clone(),
-        Some(ruptures_path.clone()),
-        case.slip_rate_threshold(),
-        case.events.merge_within,
-    ))];
+    let mut sinks: Vec<Box<dyn Sink>> = vec![Box::new(CatalogSink::new(events_path.clone(), Some(ruptures_path.clone())))];
     let interrupt = Arc::new(AtomicBool::new(false));
     {
         let flag = interrupt.clone();
@@ -102,7 +97,17 @@ fn run_command(args: RunArgs) -> ExitCode {
         let _ = ctrlc::set_handler(move || flag.store(true, std::sync::atomic::Ordering::SeqCst));
     }
     let outcome =
-        run(scene.as_mut(), &case.time, &mut sinks, LoopOptions { progress: !args.quiet, interrupt: Some(&interrupt) });
+        run(
+            scene.as_mut(),
+            &case.time,
+            &mut sinks,
+            LoopOptions {
+                progress: !args.quiet,
+                interrupt: Some(&interrupt),
+                slip_rate_threshold: case.slip_rate_threshold(),
+                merge_within: case.events.merge_within,
+            },
+        );
     let is_block = scene.layout().kind == "block";
     let written = if is_block {
         format!("{} and {}", events_path.display(), ruptures_path.display())
@@ -110,23 +115,25 @@ fn run_command(args: RunArgs) -> ExitCode {
         events_path.display().to_string()
     };
     match outcome {
-        Outcome::Completed { steps, wall } => {
+        Outcome::Completed { steps, wall, catalog } => {
             if !args.quiet {
                 println!(
-                    "slipfront: {} ({}): {steps} steps to t = {} s in {:.2} s; catalog {written}",
+                    "slipfront: {} ({}): {steps} steps to t = {} s in {:.2} s; {} slip events, {} ruptures: {written}",
                     args.case.display(),
                     case.scene.kind(),
                     case.time.t_end,
-                    wall.as_secs_f64()
+                    wall.as_secs_f64(),
+                    catalog.events.len(),
+                    catalog.ruptures.len(),
                 );
             }
             ExitCode::SUCCESS
         }
-        Outcome::Interrupted { steps } => fail(
+        Outcome::Interrupted { steps, .. } => fail(
             EXIT_INTERRUPTED,
             format!("interrupted after {steps} steps (t = {} s); outputs finished: {written}", scene.time()),
         ),
-        Outcome::Failed(error) => {
+        Outcome::Failed { error, .. } => {
             fail(EXIT_FAILED, format!("run failed at {error}; outputs hold every step before it: {written}"))
         }
         Outcome::Sink(error) => fail(EXIT_FAILED, error),

@@ -1,4 +1,5 @@
-//! The time loop: advances a scene step by step and hands every frame to the sinks.
+//! The time loop: advances a scene step by step, keeps the event catalog, and hands every frame
+//! to the sinks.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
@@ -6,18 +7,19 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::case::TimeSpec;
-use crate::scene::{Needs, RunError, Scene};
+use crate::scene::{Frame, Layout, Needs, RunError, Scene};
+use crate::sink::events::{Catalog, EventDetector};
 use crate::sink::{Ending, Sink, SinkError};
 
-/// How a run ended.
+/// How a run ended. Every variant but `Sink` comes with the catalog up to the last good step.
 #[derive(Debug)]
 pub enum Outcome {
     /// All steps done.
-    Completed { steps: u64, wall: Duration },
+    Completed { steps: u64, wall: Duration, catalog: Catalog },
     /// Stopped at a signal after `steps` steps; the sinks were finished.
-    Interrupted { steps: u64 },
+    Interrupted { steps: u64, catalog: Catalog },
     /// A step failed; the sinks were finished with everything up to the last good step.
-    Failed(RunError),
+    Failed { error: RunError, catalog: Catalog },
     /// A sink could not write.
     Sink(SinkError),
 }
@@ -28,39 +30,52 @@ pub struct LoopOptions<'a> {
     pub progress: bool,
     /// Set (e.g. by a signal handler) to stop after the current step.
     pub interrupt: Option<&'a AtomicBool>,
+    /// Slip-rate threshold (m/s) and merge window (s) of the event catalog.
+    pub slip_rate_threshold: f64,
+    pub merge_within: f64,
+}
+
+/// The sinks and the event detector that observe a run.
+struct Observers<'s, 'b> {
+    sinks: &'s mut [Box<dyn Sink + 'b>],
+    detector: EventDetector,
+}
+
+impl Observers<'_, '_> {
+    fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
+        self.detector.record(frame);
+        self.sinks.iter_mut().try_for_each(|sink| sink.record(frame))
+    }
+
+    /// Closes the catalog and finishes every sink (all of them, even after one fails).
+    fn finish(self, ending: Ending) -> Result<Catalog, SinkError> {
+        let catalog = self.detector.into_catalog();
+        let mut first_error = Ok(());
+        for sink in self.sinks.iter_mut() {
+            let result = sink.finish(ending, &catalog);
+            if first_error.is_ok() {
+                first_error = result;
+            }
+        }
+        first_error.map(|()| catalog)
+    }
 }
 
 /// Runs `scene` from its current time to `time.t_end` in steps of `time.dt` (the last one
 /// shortened to land on `t_end`).
-pub fn run(
-    scene: &mut dyn Scene,
-    time: &TimeSpec,
-    sinks: &mut [Box<dyn Sink + '_>],
-    options: LoopOptions<'_>,
-) -> Outcome {
+pub fn run(scene: &mut dyn Scene, time: &TimeSpec, sinks: &mut [Box<dyn Sink + '_>], options: LoopOptions<'_>) -> Outcome {
     let needs = sinks.iter().fold(Needs::default(), |n, s| n.union(s.needs()));
-    let layout = scene.layout().clone();
+    let layout: Layout = scene.layout().clone();
     for sink in sinks.iter_mut() {
         if let Err(e) = sink.begin(&layout) {
             return Outcome::Sink(e);
         }
     }
-    let finish = |sinks: &mut [Box<dyn Sink + '_>], ending: Ending| -> Result<(), SinkError> {
-        let mut first_error = Ok(());
-        for sink in sinks.iter_mut() {
-            let result = sink.finish(ending);
-            if first_error.is_ok() {
-                first_error = result;
-            }
-        }
-        first_error
-    };
-    let initial = scene.frame(needs, 0.0);
-    for sink in sinks.iter_mut() {
-        if let Err(e) = sink.record(&initial) {
-            let _ = finish(sinks, Ending::Failed);
-            return Outcome::Sink(e);
-        }
+    let detector = EventDetector::new(layout.segments.len(), options.slip_rate_threshold, options.merge_within);
+    let mut observers = Observers { sinks, detector };
+    if let Err(e) = observers.record(&scene.frame(needs, 0.0)) {
+        let _ = observers.finish(Ending::Failed);
+        return Outcome::Sink(e);
     }
 
     let steps = time.steps();
@@ -75,8 +90,8 @@ pub fn run(
     for k in 1..=steps {
         if options.interrupt.is_some_and(|flag| flag.load(Ordering::SeqCst)) {
             bar.finish_and_clear();
-            return match finish(sinks, Ending::Interrupted) {
-                Ok(()) => Outcome::Interrupted { steps: k - 1 },
+            return match observers.finish(Ending::Interrupted) {
+                Ok(catalog) => Outcome::Interrupted { steps: k - 1, catalog },
                 Err(e) => Outcome::Sink(e),
             };
         }
@@ -84,18 +99,15 @@ pub fn run(
         let dt = target - scene.time();
         if let Err(error) = scene.advance(dt) {
             bar.finish_and_clear();
-            return match finish(sinks, Ending::Failed) {
-                Ok(()) => Outcome::Failed(error),
+            return match observers.finish(Ending::Failed) {
+                Ok(catalog) => Outcome::Failed { error, catalog },
                 Err(e) => Outcome::Sink(e),
             };
         }
-        let frame = scene.frame(needs, dt);
-        for sink in sinks.iter_mut() {
-            if let Err(e) = sink.record(&frame) {
-                bar.finish_and_clear();
-                let _ = finish(sinks, Ending::Failed);
-                return Outcome::Sink(e);
-            }
+        if let Err(e) = observers.record(&scene.frame(needs, dt)) {
+            bar.finish_and_clear();
+            let _ = observers.finish(Ending::Failed);
+            return Outcome::Sink(e);
         }
         if options.progress && k % 64 == 0 {
             if !shown && start.elapsed() > Duration::from_secs(1) {
@@ -107,8 +119,8 @@ pub fn run(
         }
     }
     bar.finish_and_clear();
-    match finish(sinks, Ending::Completed) {
-        Ok(()) => Outcome::Completed { steps, wall: start.elapsed() },
+    match observers.finish(Ending::Completed) {
+        Ok(catalog) => Outcome::Completed { steps, wall: start.elapsed(), catalog },
         Err(e) => Outcome::Sink(e),
     }
 }

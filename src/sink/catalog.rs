@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use super::events::{EventDetector, Rupture, SlipEvent, ruptures};
+use super::events::{Catalog, Rupture, SlipEvent};
 use super::{Ending, Sink, SinkError};
 use crate::scene::{Frame, Layout};
 
@@ -16,16 +16,12 @@ pub const RUPTURES_HEADER: &str = "onset_s,end_s,nucleation_segment,first_segmen
 pub struct CatalogSink {
     events_path: PathBuf,
     ruptures_path: Option<PathBuf>,
-    threshold: f64,
-    merge_within: f64,
-    detector: Option<EventDetector>,
 }
 
 impl CatalogSink {
-    /// `ruptures_path` is used for block scenes only; see [`EventDetector::new`] for the
-    /// threshold (m/s) and merge window (s).
-    pub fn new(events_path: PathBuf, ruptures_path: Option<PathBuf>, threshold: f64, merge_within: f64) -> Self {
-        Self { events_path, ruptures_path, threshold, merge_within, detector: None }
+    /// `ruptures_path` is used for block scenes only.
+    pub fn new(events_path: PathBuf, ruptures_path: Option<PathBuf>) -> Self {
+        Self { events_path, ruptures_path }
     }
 }
 
@@ -34,7 +30,6 @@ impl Sink for CatalogSink {
         if layout.kind != "block" {
             self.ruptures_path = None;
         }
-        self.detector = Some(EventDetector::new(layout.segments.len(), self.threshold, self.merge_within));
         // Fail now, not after the run, if the file cannot be written.
         write_file(&self.events_path, &events_csv(&[]))?;
         if let Some(path) = &self.ruptures_path {
@@ -43,19 +38,14 @@ impl Sink for CatalogSink {
         Ok(())
     }
 
-    fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
-        if let Some(detector) = &mut self.detector {
-            detector.record(frame);
-        }
+    fn record(&mut self, _frame: &Frame) -> Result<(), SinkError> {
         Ok(())
     }
 
-    fn finish(&mut self, _ending: Ending) -> Result<(), SinkError> {
-        let Some(detector) = &mut self.detector else { return Ok(()) };
-        detector.finish();
-        write_file(&self.events_path, &events_csv(detector.events()))?;
+    fn finish(&mut self, _ending: Ending, catalog: &Catalog) -> Result<(), SinkError> {
+        write_file(&self.events_path, &events_csv(&catalog.events))?;
         if let Some(path) = &self.ruptures_path {
-            write_file(path, &ruptures_csv(&ruptures(detector.events())))?;
+            write_file(path, &ruptures_csv(&catalog.ruptures))?;
         }
         Ok(())
     }

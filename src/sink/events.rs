@@ -9,6 +9,13 @@
 
 use crate::scene::Frame;
 
+/// The catalog of a run: its slip events (by onset) and their grouping into ruptures.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Catalog {
+    pub events: Vec<SlipEvent>,
+    pub ruptures: Vec<Rupture>,
+}
+
 /// One slip event of one segment.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SlipEvent {
@@ -188,6 +195,13 @@ impl EventDetector {
     /// Events closed so far (all of them, by onset, once [`Self::finish`] has run).
     pub fn events(&self) -> &[SlipEvent] {
         &self.events
+    }
+
+    /// Closes open events and returns the catalog.
+    pub fn into_catalog(mut self) -> Catalog {
+        self.finish();
+        let ruptures = ruptures(&self.events);
+        Catalog { events: self.events, ruptures }
     }
 }
 

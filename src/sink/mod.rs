@@ -9,6 +9,7 @@ pub mod observations;
 use std::fmt;
 
 use crate::scene::{Frame, Layout, Needs};
+use events::Catalog;
 
 /// How a run ended, as the sinks are told.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -41,6 +42,7 @@ pub trait Sink {
     fn begin(&mut self, layout: &Layout) -> Result<(), SinkError>;
     /// Called for the initial frame and after every step.
     fn record(&mut self, frame: &Frame) -> Result<(), SinkError>;
-    /// Called once at the end, however the run ended.
-    fn finish(&mut self, ending: Ending) -> Result<(), SinkError>;
+    /// Called once at the end, however the run ended, with the catalog of every slip event up
+    /// to the last good step.
+    fn finish(&mut self, ending: Ending, catalog: &Catalog) -> Result<(), SinkError>;
 }
