@@ -8,10 +8,12 @@ use std::sync::atomic::AtomicBool;
 use clap::{Args, Parser, Subcommand};
 
 use crate::case;
+use crate::inspect::{self, check::Expectations, check::check};
 use crate::run::{LoopOptions, Outcome, run};
 use crate::scene;
 use crate::sink::Sink;
 use crate::sink::catalog::CatalogSink;
+use crate::sink::recording::{RecordingPlan, RerunSink, Viewer, open_stream};
 
 /// Exit code for invalid input (case, arguments, output folder).
 pub const EXIT_INVALID: u8 = 2;
@@ -32,11 +34,26 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Run a case file and write its event catalog (and recordings) to the output folder.
+    /// Run a case file and write its Rerun recording and event catalog to the output folder.
     ///
     /// Exit codes: 0 success, 1 the run failed (the outputs hold everything up to the last good
     /// step), 2 invalid input, 130 interrupted (outputs finished up to the last step).
     Run(RunArgs),
+    /// Check a recording: the schema's entities, sim_time monotonic and covering the run, no NaN
+    /// or Inf, equal row counts, the stored blueprint, and optional expectations.
+    ///
+    /// Exit codes: 0 pass, 1 mismatch, 2 unreadable.
+    Check(CheckArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    /// The recording (.rrd).
+    pub recording: PathBuf,
+    /// Expectations (TOML): `[events] slip_events = [lo, hi]`, `ruptures = [lo, hi]`, and
+    /// `[[at]] entity = "...", time = t, min = a, max = b` (the last row at or before t).
+    #[arg(long, value_name = "EXPECT.toml")]
+    pub expect: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]
@@ -54,6 +71,18 @@ pub struct RunArgs {
     /// rupture CSV goes beside it as <stem>.ruptures.csv.
     #[arg(long, value_name = "PATH")]
     pub events: Option<PathBuf>,
+    /// Path of the Rerun recording [default: <out-dir>/<case-stem>.rrd].
+    #[arg(long, value_name = "PATH", conflicts_with = "no_rrd")]
+    pub rrd: Option<PathBuf>,
+    /// Write no .rrd recording.
+    #[arg(long)]
+    pub no_rrd: bool,
+    /// Also stream to a new Rerun viewer (the `rerun` executable on PATH).
+    #[arg(long, conflicts_with = "connect")]
+    pub spawn: bool,
+    /// Also stream to a running Rerun viewer, e.g. rerun+http://127.0.0.1:9876/proxy.
+    #[arg(long, value_name = "URL")]
+    pub connect: Option<String>,
     /// Print nothing but errors: no progress bar, no summary.
     #[arg(long, short)]
     pub quiet: bool,
@@ -63,6 +92,7 @@ pub struct RunArgs {
 pub fn main_with(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Run(args) => run_command(args),
+        Command::Check(args) => check_command(args),
     }
 }
 
@@ -89,31 +119,56 @@ fn run_command(args: RunArgs) -> ExitCode {
         Ok(scene) => scene,
         Err(e) => return fail(EXIT_FAILED, e),
     };
-    let mut sinks: Vec<Box<dyn Sink>> = vec![Box::new(CatalogSink::new(events_path.clone(), Some(ruptures_path.clone())))];
+    let rrd_path = if args.no_rrd {
+        None
+    } else {
+        Some(args.rrd.clone().unwrap_or_else(|| args.out_dir.join(format!("{stem}.rrd"))))
+    };
+    let viewer = match (&args.connect, args.spawn) {
+        (Some(url), _) => Viewer::Connect(url.clone()),
+        (None, true) => Viewer::Spawn,
+        (None, false) => Viewer::None,
+    };
+    let stream = match open_stream(rrd_path.as_deref(), &viewer, &stem) {
+        Ok(stream) => stream,
+        Err(e) => return fail(EXIT_INVALID, e),
+    };
+    let mut sinks: Vec<Box<dyn Sink>> =
+        vec![Box::new(CatalogSink::new(events_path.clone(), Some(ruptures_path.clone())))];
+    if let Some(stream) = stream {
+        let plan = RecordingPlan {
+            case: stem.clone(),
+            t_end: case.time.t_end,
+            dt: case.time.dt,
+            steps: case.time.steps(),
+            slip_rate_threshold: case.slip_rate_threshold(),
+            spec: case.record.clone(),
+        };
+        sinks.push(Box::new(RerunSink::new(stream, plan)));
+    }
     let interrupt = Arc::new(AtomicBool::new(false));
     {
         let flag = interrupt.clone();
         // A second handler cannot be installed in tests that call this twice; that is harmless.
         let _ = ctrlc::set_handler(move || flag.store(true, std::sync::atomic::Ordering::SeqCst));
     }
-    let outcome =
-        run(
-            scene.as_mut(),
-            &case.time,
-            &mut sinks,
-            LoopOptions {
-                progress: !args.quiet,
-                interrupt: Some(&interrupt),
-                slip_rate_threshold: case.slip_rate_threshold(),
-                merge_within: case.events.merge_within,
-            },
-        );
-    let is_block = scene.layout().kind == "block";
-    let written = if is_block {
-        format!("{} and {}", events_path.display(), ruptures_path.display())
-    } else {
-        events_path.display().to_string()
-    };
+    let outcome = run(
+        scene.as_mut(),
+        &case.time,
+        &mut sinks,
+        LoopOptions {
+            progress: !args.quiet,
+            interrupt: Some(&interrupt),
+            slip_rate_threshold: case.slip_rate_threshold(),
+            merge_within: case.events.merge_within,
+        },
+    );
+    let mut outputs: Vec<String> = rrd_path.iter().map(|p| p.display().to_string()).collect();
+    outputs.push(events_path.display().to_string());
+    if scene.layout().kind == "block" {
+        outputs.push(ruptures_path.display().to_string());
+    }
+    let written = outputs.join(", ");
     match outcome {
         Outcome::Completed { steps, wall, catalog } => {
             if !args.quiet {
@@ -138,6 +193,23 @@ fn run_command(args: RunArgs) -> ExitCode {
         }
         Outcome::Sink(error) => fail(EXIT_FAILED, error),
     }
+}
+
+fn check_command(args: CheckArgs) -> ExitCode {
+    let expect = match &args.expect {
+        Some(path) => match Expectations::load(path) {
+            Ok(e) => e,
+            Err(e) => return fail(EXIT_INVALID, e),
+        },
+        None => Expectations::default(),
+    };
+    let recording = match inspect::rrd::read(&args.recording) {
+        Ok(r) => r,
+        Err(e) => return fail(EXIT_INVALID, e),
+    };
+    let report = check(&recording, &expect);
+    print!("{}", report.render());
+    if report.passed() { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED) }
 }
 
 /// `<dir>/<x>.ruptures.csv` beside `<dir>/<x>.events.csv` (or `<stem>.ruptures.csv`).

@@ -6,6 +6,7 @@ pub mod cli;
 pub mod dynamics;
 pub mod fem;
 pub mod friction;
+pub mod inspect;
 pub mod run;
 pub mod scene;
 pub mod sink;

@@ -63,7 +63,12 @@ impl Observers<'_, '_> {
 
 /// Runs `scene` from its current time to `time.t_end` in steps of `time.dt` (the last one
 /// shortened to land on `t_end`).
-pub fn run(scene: &mut dyn Scene, time: &TimeSpec, sinks: &mut [Box<dyn Sink + '_>], options: LoopOptions<'_>) -> Outcome {
+pub fn run(
+    scene: &mut dyn Scene,
+    time: &TimeSpec,
+    sinks: &mut [Box<dyn Sink + '_>],
+    options: LoopOptions<'_>,
+) -> Outcome {
     let needs = sinks.iter().fold(Needs::default(), |n, s| n.union(s.needs()));
     let layout: Layout = scene.layout().clone();
     for sink in sinks.iter_mut() {

@@ -110,6 +110,9 @@ impl Case {
         let mut probes = Checker::new("probes");
         self.probes.check(&self.scene, &mut probes);
         all.extend(probes.violations);
+        let mut record = Checker::new("record");
+        self.record.check(&self.scene, &mut record);
+        all.extend(record.violations);
         all
     }
 

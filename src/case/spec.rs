@@ -3,6 +3,7 @@
 use serde::Deserialize;
 
 use crate::friction::FrictionParams;
+use crate::sink::schema::Quantity;
 use crate::validate::Checker;
 
 /// A whole case.
@@ -21,6 +22,9 @@ pub struct Case {
     /// Named nodes and segments (block scenes).
     #[serde(default)]
     pub probes: ProbesSpec,
+    /// What the Rerun recording holds.
+    #[serde(default)]
+    pub record: RecordSpec,
 }
 
 /// `[time]`.
@@ -328,6 +332,126 @@ impl ProbesSpec {
                 }
                 if probe.name.trim().is_empty() {
                     c.fail(&format!("{key}[{i}].name"), format!("{:?}", probe.name), "must not be empty");
+                }
+            }
+        }
+    }
+}
+
+/// `[record]`: what goes into the recording.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RecordSpec {
+    /// Per-segment quantities (default all): `traction_t`, `traction_n`, `R`, `R_star`,
+    /// `structure`, `slip_rate`, `slip`.
+    #[serde(default = "all_quantities")]
+    pub quantities: Vec<Quantity>,
+    /// Segments with time series: `"all"`, `"probes"` or a list of indices. Default: all while
+    /// the scene has at most 64 segments, else the probes.
+    #[serde(default)]
+    pub segments: Selection,
+    /// Contact-surface nodes with `u_x`, `u_y` series, chosen the same way.
+    #[serde(default)]
+    pub nodes: Selection,
+    /// While no segment slips, record every `stick_every`-th step (default 50); every step
+    /// while any segment slips.
+    #[serde(default = "default_stick_every")]
+    pub stick_every: u64,
+    /// Displacement magnification of the spatial view (default 1: true scale).
+    #[serde(default = "default_magnification")]
+    pub magnification: f64,
+    /// Log the spatial and space-time views (default true).
+    #[serde(default = "default_spatial")]
+    pub spatial: bool,
+}
+
+impl Default for RecordSpec {
+    fn default() -> Self {
+        Self {
+            quantities: all_quantities(),
+            segments: Selection::default(),
+            nodes: Selection::default(),
+            stick_every: default_stick_every(),
+            magnification: default_magnification(),
+            spatial: default_spatial(),
+        }
+    }
+}
+
+fn all_quantities() -> Vec<Quantity> {
+    Quantity::ALL.to_vec()
+}
+
+fn default_stick_every() -> u64 {
+    50
+}
+
+fn default_magnification() -> f64 {
+    1.0
+}
+
+fn default_spatial() -> bool {
+    true
+}
+
+/// Which segments or nodes get time series.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum Selection {
+    /// `"all"`, `"probes"` or `"auto"` (the default).
+    Named(SelectionName),
+    /// Explicit indices from the left.
+    Indices(Vec<usize>),
+    #[serde(skip)]
+    #[default]
+    Auto,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SelectionName {
+    All,
+    Probes,
+    Auto,
+}
+
+/// Above this many segments, only probes get time series by default.
+pub const MAX_DEFAULT_SEGMENTS: usize = 64;
+
+impl Selection {
+    /// Indices out of `count`, with `probes` the named ones.
+    pub fn resolve(&self, count: usize, probes: &[usize]) -> Vec<usize> {
+        let auto = || if count <= MAX_DEFAULT_SEGMENTS + 1 { (0..count).collect() } else { probes.to_vec() };
+        match self {
+            Selection::Auto | Selection::Named(SelectionName::Auto) => auto(),
+            Selection::Named(SelectionName::All) => (0..count).collect(),
+            Selection::Named(SelectionName::Probes) => probes.to_vec(),
+            Selection::Indices(list) => list.clone(),
+        }
+    }
+}
+
+impl RecordSpec {
+    pub fn check(&self, scene: &SceneSpec, c: &mut Checker<'_>) {
+        if self.stick_every == 0 {
+            c.fail("stick_every", 0, "must be at least 1");
+        }
+        c.positive("magnification", self.magnification);
+        let (nodes, segments) = match scene {
+            SceneSpec::Block(b) => (b.nx + 1, b.nx),
+            _ => (0, 1),
+        };
+        for (selection, key, count) in [(&self.segments, "segments", segments), (&self.nodes, "nodes", nodes)] {
+            if let Selection::Indices(list) = selection {
+                for (i, &index) in list.iter().enumerate() {
+                    if index >= count {
+                        let rule = if count == 0 {
+                            format!("is not allowed: a {} scene has no nodes", scene.kind())
+                        } else {
+                            format!("must be below {count} (the scene has {count} {key}, numbered from 0 at the left)")
+                        };
+                        c.fail(&format!("{key}[{i}]"), index, rule);
+                    }
                 }
             }
         }

@@ -2,9 +2,13 @@
 //! receive the layout once, every frame, and a final call that must leave their output valid
 //! whether the run completed, failed or was interrupted.
 
+pub mod blueprint;
 pub mod catalog;
+pub mod colormap;
 pub mod events;
 pub mod observations;
+pub mod recording;
+pub mod schema;
 
 use std::fmt;
 

@@ -1,0 +1,255 @@
+//! `slipfront check`: does a recording hold what the schema promises, and what the user
+//! expects of it?
+//!
+//! The recording describes itself ([`RunInfo`] at `slipfront/run`, [`RunEnding`] at
+//! `slipfront/ending`), so the check needs no case file: every series it lists must exist with
+//! the same rows, `sim_time` must rise with `step` from 0 to the end of the run, and no value
+//! may be NaN or infinite. An expectations file adds value ranges at given times and event
+//! counts.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use serde::Deserialize;
+
+use super::Recording;
+use crate::sink::schema::{self, RunEnding, RunInfo};
+
+/// Optional expectations (`--expect EXPECT.toml`).
+///
+/// ```toml
+/// [events]
+/// slip_events = [4, 6]      # inclusive range
+/// ruptures = [1, 10]
+///
+/// [[at]]
+/// entity = "contact/friction_force"
+/// time = 40.0               # s: the last recorded row at or before it
+/// min = 199.0
+/// max = 201.0
+/// ```
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Expectations {
+    #[serde(default)]
+    pub events: EventExpectations,
+    #[serde(default)]
+    pub at: Vec<ValueExpectation>,
+}
+
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EventExpectations {
+    pub slip_events: Option<[usize; 2]>,
+    pub ruptures: Option<[usize; 2]>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ValueExpectation {
+    pub entity: String,
+    pub time: f64,
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+}
+
+impl Expectations {
+    /// Reads an expectations file; errors name the file and the key.
+    pub fn load(path: &Path) -> Result<Self, String> {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+    }
+}
+
+/// The outcome of a check.
+#[derive(Debug, Clone, Default)]
+pub struct Report {
+    /// What was found, one line each.
+    pub summary: Vec<String>,
+    /// What is wrong, one line each; empty means the recording passes.
+    pub problems: Vec<String>,
+}
+
+impl Report {
+    pub fn passed(&self) -> bool {
+        self.problems.is_empty()
+    }
+
+    /// The report as printed by `slipfront check`.
+    pub fn render(&self) -> String {
+        let mut out = String::new();
+        for line in &self.summary {
+            let _ = writeln!(out, "{line}");
+        }
+        if self.passed() {
+            let _ = writeln!(out, "PASS");
+        } else {
+            for line in &self.problems {
+                let _ = writeln!(out, "FAIL: {line}");
+            }
+        }
+        out
+    }
+}
+
+/// Checks `recording` against its own description and `expect`.
+pub fn check(recording: &Recording, expect: &Expectations) -> Report {
+    let mut report = Report::default();
+    let problems = &mut report.problems;
+    if let Some(problem) = &recording.problem {
+        problems.push(format!("the file is damaged: {problem}"));
+    }
+    let Some(info_text) = recording.static_texts.get(schema::RUN_INFO) else {
+        problems.push(format!(
+            "no run description at {}: not a slipfront recording, or cut off at its start",
+            schema::RUN_INFO
+        ));
+        return report;
+    };
+    let info: RunInfo = match toml::from_str(info_text) {
+        Ok(info) => info,
+        Err(e) => {
+            problems.push(format!("the run description at {} is unreadable: {e}", schema::RUN_INFO));
+            return report;
+        }
+    };
+    let ending: Option<RunEnding> = recording.static_texts.get(schema::RUN_ENDING).and_then(|t| toml::from_str(t).ok());
+    report.summary.push(format!(
+        "{} ({} scene, {} segments), t_end = {} s in {} steps of {} s",
+        info.case, info.kind, info.segments, info.t_end, info.steps, info.dt
+    ));
+    match &ending {
+        None => problems.push(format!(
+            "no ending record at {}: the recording stops before the run finished writing it (truncated?)",
+            schema::RUN_ENDING
+        )),
+        Some(e) => report.summary.push(format!(
+            "run {}: {} rows per series up to t = {} s; {} slip events, {} ruptures",
+            e.ending, e.rows, e.last_time, e.slip_events, e.ruptures
+        )),
+    }
+
+    // Every listed series, with the same rows, sim_time rising with step, finite values.
+    let mut reference: Option<(&str, &super::Series)> = None;
+    let mut non_finite = 0usize;
+    for path in &info.series {
+        let Some(series) = recording.series.get(path) else {
+            problems.push(format!("missing series {path}"));
+            continue;
+        };
+        if let Some((first, s)) = reference {
+            if s.steps != series.steps {
+                problems.push(format!(
+                    "{path} has {} rows at other steps than {first} ({} rows)",
+                    series.steps.len(),
+                    s.steps.len()
+                ));
+            }
+        } else {
+            reference = Some((path.as_str(), series));
+        }
+        if let Some(i) = series.values.iter().position(|v| !v.is_finite()) {
+            non_finite += 1;
+            if non_finite <= 5 {
+                problems.push(format!(
+                    "{path} = {} at step {} (t = {} s)",
+                    series.values[i], series.steps[i], series.times[i]
+                ));
+            }
+        }
+    }
+    if non_finite > 5 {
+        problems.push(format!("{} more series hold NaN or infinite values", non_finite - 5));
+    }
+    if let Some((path, series)) = reference {
+        let rows = series.steps.len();
+        report.summary.push(format!("{} series x {rows} rows", info.series.len()));
+        if let Some(i) = series.times.windows(2).position(|w| w[1] < w[0]) {
+            problems.push(format!(
+                "sim_time decreases in {path} at step {}: {} s then {} s",
+                series.steps[i + 1],
+                series.times[i],
+                series.times[i + 1]
+            ));
+        }
+        if series.steps.windows(2).any(|w| w[1] == w[0]) {
+            problems.push(format!("{path} has two rows at the same step"));
+        }
+        let first = series.times.first().copied().unwrap_or(f64::NAN);
+        let last = series.times.last().copied().unwrap_or(f64::NAN);
+        if first != 0.0 {
+            problems.push(format!("sim_time starts at {first} s, not at 0"));
+        }
+        let expected_end = match &ending {
+            Some(e) if e.ending != "completed" => e.last_time,
+            _ => info.t_end,
+        };
+        if (last - expected_end).abs() > 1e-6 * expected_end.max(1.0) {
+            problems.push(format!("sim_time ends at {last} s, the run at {expected_end} s"));
+        }
+        if let Some(e) = &ending
+            && e.rows as usize != rows
+        {
+            problems.push(format!("{rows} rows recorded, the run reports {}", e.rows));
+        }
+        report.summary.push(format!("sim_time from {first} s to {last} s"));
+    } else if !info.series.is_empty() {
+        problems.push("none of the listed series is present".into());
+    }
+    if info.spatial {
+        for entity in [schema::SPATIAL_CONTACT, schema::SPATIAL_MESH, schema::SPACETIME_IMAGE, schema::SPACETIME_NOW] {
+            if !recording.entities.contains(entity) {
+                problems.push(format!("missing entity {entity} of the spatial views"));
+            }
+        }
+    }
+    if let Some(e) = &ending {
+        let logged = recording.text_logs.iter().filter(|(entity, _, _)| entity == schema::EVENTS).count();
+        let expected = e.slip_events + if info.kind == "block" { e.ruptures } else { 0 };
+        if logged != expected {
+            problems.push(format!("{logged} entries in the event log, the catalog holds {expected}"));
+        }
+        if let Some([lo, hi]) = expect.events.slip_events
+            && !(lo..=hi).contains(&e.slip_events)
+        {
+            problems.push(format!("{} slip events, expected {lo} to {hi}", e.slip_events));
+        }
+        if let Some([lo, hi]) = expect.events.ruptures
+            && !(lo..=hi).contains(&e.ruptures)
+        {
+            problems.push(format!("{} ruptures, expected {lo} to {hi}", e.ruptures));
+        }
+    }
+    if recording.views.is_empty() {
+        problems.push("no blueprint views stored".into());
+    } else {
+        report.summary.push(format!(
+            "blueprint: {}",
+            recording.views.iter().map(|v| format!("{} \"{}\"", v.class, v.name)).collect::<Vec<_>>().join(", ")
+        ));
+    }
+    for (i, at) in expect.at.iter().enumerate() {
+        let Some(series) = recording.series.get(at.entity.trim_start_matches('/')) else {
+            problems.push(format!("at[{i}]: no series {}", at.entity));
+            continue;
+        };
+        match series.at(at.time) {
+            None => problems.push(format!("at[{i}]: {} has no row at or before t = {} s", at.entity, at.time)),
+            Some((t, v)) => {
+                let low = at.min.is_some_and(|m| v < m);
+                let high = at.max.is_some_and(|m| v > m);
+                let range = format!(
+                    "[{}, {}]",
+                    at.min.map_or("-inf".into(), |m| m.to_string()),
+                    at.max.map_or("inf".into(), |m| m.to_string())
+                );
+                if low || high || !v.is_finite() {
+                    problems.push(format!("at[{i}]: {} = {v} at t = {t} s, expected in {range}", at.entity));
+                } else {
+                    report.summary.push(format!("{} = {v} at t = {t} s, in {range}", at.entity));
+                }
+            }
+        }
+    }
+    report
+}

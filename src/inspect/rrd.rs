@@ -1,0 +1,110 @@
+//! Reads a Rerun recording (`.rrd`) back into a [`Recording`].
+
+use std::fs::File;
+use std::io::BufReader;
+use std::path::Path;
+
+use rerun::external::re_log_encoding::DecoderApp;
+use rerun::log::{Chunk, LogMsg};
+use rerun::{ComponentIdentifier, TimelineName};
+
+use super::{ReadError, Recording, View};
+use crate::sink::schema;
+
+/// Decodes every message of `path`. A file that ends mid-message (a run killed while writing)
+/// yields what came before, with [`Recording::problem`] saying where it stopped.
+pub fn read(path: &Path) -> Result<Recording, ReadError> {
+    let file = File::open(path).map_err(|e| ReadError(format!("cannot open {}: {e}", path.display())))?;
+    let decoder = DecoderApp::decode_eager(BufReader::new(file))
+        .map_err(|e| ReadError(format!("{} is not a Rerun recording: {e}", path.display())))?;
+    let scalars: ComponentIdentifier = rerun::Scalars::descriptor_scalars().component;
+    let text: ComponentIdentifier = rerun::TextDocument::descriptor_text().component;
+    let log_text: ComponentIdentifier = rerun::TextLog::descriptor_text().component;
+    // Blueprint components (`rerun.blueprint.archetypes.ViewBlueprint`, `ViewContents`); the
+    // archetypes themselves are not re-exported by the `rerun` crate.
+    let class = ComponentIdentifier::from("ViewBlueprint:class_identifier");
+    let display_name = ComponentIdentifier::from("ViewBlueprint:display_name");
+    let origin = ComponentIdentifier::from("ViewBlueprint:space_origin");
+    let query = ComponentIdentifier::from("ViewContents:query");
+    let step_timeline = TimelineName::from(schema::STEP);
+    let time_timeline = TimelineName::from(schema::SIM_TIME);
+
+    let mut recording = Recording::default();
+    let mut views: std::collections::BTreeMap<String, View> = Default::default();
+    for message in decoder {
+        let message = match message {
+            Ok(m) => m,
+            Err(e) => {
+                recording.problem = Some(format!("decoding stopped after {} messages: {e}", recording.messages));
+                break;
+            }
+        };
+        recording.messages += 1;
+        let LogMsg::ArrowMsg(store, arrow) = message else { continue };
+        let chunk = match Chunk::from_arrow_msg(&arrow) {
+            Ok(c) => c,
+            Err(e) => {
+                recording.problem = Some(format!("message {} is not a valid chunk: {e}", recording.messages));
+                break;
+            }
+        };
+        let entity = chunk.entity_path().to_string();
+        let entity = entity.trim_start_matches('/').to_string();
+        if store.is_blueprint() {
+            recording.blueprint_messages += 1;
+            let strings = |id: ComponentIdentifier| -> Vec<String> {
+                chunk.iter_slices::<String>(id).flatten().map(|s| s.as_str().to_string()).collect()
+            };
+            if let Some(id) = entity.strip_prefix("view/") {
+                if let Some(id) = id.strip_suffix("/ViewContents") {
+                    let view = views.entry(id.to_string()).or_default();
+                    view.contents.extend(strings(query));
+                } else if !id.contains('/') {
+                    let view = views.entry(id.to_string()).or_default();
+                    if let Some(c) = strings(class).pop() {
+                        view.class = c;
+                    }
+                    if let Some(n) = strings(display_name).pop() {
+                        view.name = n;
+                    }
+                    if let Some(o) = strings(origin).pop() {
+                        view.origin = o;
+                    }
+                }
+            }
+            continue;
+        }
+        recording.entities.insert(entity.clone());
+        if chunk.is_static() {
+            for texts in chunk.iter_slices::<String>(text) {
+                if let Some(t) = texts.last() {
+                    recording.static_texts.insert(entity.clone(), t.as_str().to_string());
+                }
+            }
+            continue;
+        }
+        if chunk.components().get_array(scalars).is_some() {
+            let series = recording.series.entry(entity.clone()).or_default();
+            let steps = chunk.iter_component_indices(step_timeline, scalars);
+            let times = chunk.iter_component_indices(time_timeline, scalars);
+            for (((step, _), (time, _)), values) in steps.zip(times).zip(chunk.iter_slices::<f64>(scalars)) {
+                series.steps.push(step.as_i64());
+                series.times.push(time.as_i64() as f64 * 1e-9);
+                series.values.push(values.first().copied().unwrap_or(f64::NAN));
+            }
+        }
+        if chunk.components().get_array(log_text).is_some() {
+            let times = chunk.iter_component_indices(time_timeline, log_text);
+            for ((time, _), texts) in times.zip(chunk.iter_slices::<String>(log_text)) {
+                for t in texts {
+                    recording.text_logs.push((entity.clone(), time.as_i64() as f64 * 1e-9, t.as_str().to_string()));
+                }
+            }
+        }
+    }
+    recording.views = views.into_values().filter(|v| !v.class.is_empty()).collect();
+    for series in recording.series.values_mut() {
+        series.sort_by_step();
+    }
+    Ok(recording)
+}

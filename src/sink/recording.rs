@@ -1,0 +1,577 @@
+//! The Rerun sink: every recorded step as time series on the `sim_time` and `step` timelines,
+//! a spatial view of the deforming block with its contact coloured by state, a space-time
+//! view of slip rate, the catalog as text logs, and a default blueprint ([`super::blueprint`]).
+//!
+//! Time series are buffered and sent as columns (`send_columns` bypasses Rerun's batcher, so
+//! many steps go as one chunk); geometry is logged row by row on recorded steps. While no
+//! segment slips only every `stick_every`-th step is recorded.
+
+use rerun::{RecordingStream, Scalars, SeriesLines, TimeColumn};
+
+use super::blueprint::default_blueprint;
+use super::colormap::{POSITION, SLIP_RATE, sample};
+use super::events::Catalog;
+use super::schema::{self, Quantity, RunEnding, RunInfo};
+use super::{Ending, Sink, SinkError};
+use crate::case::RecordSpec;
+use crate::scene::{Frame, Layout, Needs};
+
+/// Rows buffered per series before they are sent as one chunk.
+const ROWS_PER_CHUNK: usize = 4096;
+/// Rows of the space-time image, spread over `[0, t_end]`.
+const SPACETIME_ROWS: usize = 1000;
+/// Target width of the space-time image (px); each segment gets an equal share.
+const SPACETIME_WIDTH: usize = 500;
+
+/// What a series reads from a frame.
+#[derive(Debug, Clone, Copy)]
+enum Source {
+    Segment(usize, Quantity),
+    Node(usize, usize),
+    FrictionForce,
+    Base,
+    BlockX,
+    BlockV,
+}
+
+impl Source {
+    fn of(self, frame: &Frame) -> f64 {
+        match self {
+            Source::Segment(k, q) => q.of(&frame.segments[k]),
+            Source::Node(j, axis) => frame.surface_nodes[j][axis],
+            Source::FrictionForce => frame.friction_force,
+            Source::Base => frame.base_displacement,
+            Source::BlockX => frame.block.map_or(f64::NAN, |b| b[0]),
+            Source::BlockV => frame.block.map_or(f64::NAN, |b| b[1]),
+        }
+    }
+}
+
+/// Static description of the run and the recording options, known before it starts.
+#[derive(Debug, Clone)]
+pub struct RecordingPlan {
+    pub case: String,
+    pub t_end: f64,
+    pub dt: f64,
+    pub steps: u64,
+    pub slip_rate_threshold: f64,
+    pub spec: RecordSpec,
+}
+
+/// Writes a Rerun recording (file, viewer, or both).
+pub struct RerunSink {
+    rec: Option<RecordingStream>,
+    plan: RecordingPlan,
+    layout: Option<Layout>,
+    series: Vec<(String, Source)>,
+    steps: Vec<i64>,
+    times: Vec<f64>,
+    values: Vec<Vec<f64>>,
+    rows: u64,
+    last_recorded_step: Option<u64>,
+    last_time: f64,
+    /// Peak slip rate per (time row, segment) for the space-time image.
+    spacetime: Vec<f32>,
+    needs: Needs,
+}
+
+impl RerunSink {
+    /// A sink over an open recording stream.
+    pub fn new(rec: RecordingStream, plan: RecordingPlan) -> Self {
+        rec.set_log_time_enabled(false);
+        let needs = Needs {
+            segment_state: plan.spec.quantities.iter().any(|q| q.needs_state()),
+            surface_nodes: true,
+            mesh: plan.spec.spatial,
+        };
+        Self {
+            rec: Some(rec),
+            plan,
+            layout: None,
+            series: Vec::new(),
+            steps: Vec::new(),
+            times: Vec::new(),
+            values: Vec::new(),
+            rows: 0,
+            last_recorded_step: None,
+            last_time: 0.0,
+            spacetime: Vec::new(),
+            needs,
+        }
+    }
+
+    fn rec(&self) -> &RecordingStream {
+        self.rec.as_ref().expect("the stream lives until finish")
+    }
+
+    /// Sends the buffered rows of every series as one chunk each.
+    fn flush_columns(&mut self) -> Result<(), SinkError> {
+        if self.steps.is_empty() {
+            return Ok(());
+        }
+        let steps = TimeColumn::new_sequence(schema::STEP, std::mem::take(&mut self.steps));
+        let times = TimeColumn::new_duration_secs(schema::SIM_TIME, std::mem::take(&mut self.times));
+        let rec = self.rec.as_ref().expect("the stream lives until finish");
+        for ((path, _), values) in self.series.iter().zip(&mut self.values) {
+            let column = Scalars::new(std::mem::take(values)).columns_of_unit_batches().map_err(rerun_error)?;
+            rec.send_columns(path.as_str(), [steps.clone(), times.clone()], column).map_err(rerun_error)?;
+        }
+        Ok(())
+    }
+
+    fn should_record(&self, frame: &Frame) -> bool {
+        let Some(last) = self.last_recorded_step else { return true };
+        frame.segments.iter().any(|s| s.slip_rate > self.plan.slip_rate_threshold)
+            || frame.step >= last + self.plan.spec.stick_every
+            || frame.time >= self.plan.t_end * (1.0 - 1e-12)
+    }
+
+    fn log_geometry(&mut self, frame: &Frame) -> Result<(), SinkError> {
+        let layout = self.layout.as_ref().expect("begin() ran");
+        let rec = self.rec();
+        rec.set_time_sequence(schema::STEP, frame.step as i64);
+        rec.set_duration_secs(schema::SIM_TIME, frame.time);
+        let threshold = self.plan.slip_rate_threshold;
+        let state_colour = |rate: f64| -> rerun::Color {
+            if rate <= threshold {
+                rerun::Color::from_rgb(70, 130, 200)
+            } else {
+                let t = ((rate / threshold).log10() / 2.0).clamp(0.0, 1.0);
+                let [r, g, b] = sample(&SLIP_RATE, 0.55 + 0.45 * t);
+                rerun::Color::from_rgb(r, g, b)
+            }
+        };
+        let mag = self.plan.spec.magnification;
+        if let Some(mesh) = layout.mesh {
+            let (dx, dy) = (mesh.dx(), mesh.dy());
+            let at = |i: usize, j: usize| -> [f32; 2] {
+                let [ux, uy] = frame.mesh[mesh.node(i, j)];
+                [(i as f64 * dx + mag * ux) as f32, -(j as f64 * dy + mag * uy) as f32]
+            };
+            let mut lines: Vec<Vec<[f32; 2]>> =
+                (0..=mesh.ny).map(|j| (0..=mesh.nx).map(|i| at(i, j)).collect()).collect();
+            lines.extend((0..=mesh.nx).map(|i| (0..=mesh.ny).map(|j| at(i, j)).collect()));
+            rec.log(
+                schema::SPATIAL_MESH,
+                &rerun::LineStrips2D::new(lines)
+                    .with_colors([rerun::Color::from_rgb(150, 150, 150)])
+                    .with_radii([rerun::Radius::new_ui_points(0.75)]),
+            )
+            .map_err(rerun_error)?;
+            let segments: Vec<[[f32; 2]; 2]> = (0..mesh.nx).map(|k| [at(k, 0), at(k + 1, 0)]).collect();
+            let colours: Vec<rerun::Color> = frame.segments.iter().map(|s| state_colour(s.slip_rate)).collect();
+            rec.log(
+                schema::SPATIAL_CONTACT,
+                &rerun::LineStrips2D::new(segments)
+                    .with_colors(colours)
+                    .with_radii([rerun::Radius::new_ui_points(4.0)])
+                    .with_draw_order(10.0),
+            )
+            .map_err(rerun_error)?;
+            // The base: a line below the block with ticks that move with it.
+            let width = mesh.width;
+            let y = (0.12 * mesh.height.min(width)) as f32;
+            let shift = (mag * frame.base_displacement).rem_euclid(dx);
+            let mut base: Vec<Vec<[f32; 2]>> = vec![vec![[0.0, y], [width as f32, y]]];
+            base.extend((0..mesh.nx).map(|k| {
+                let x = (k as f64 * dx + shift) as f32;
+                vec![[x, y], [x, 2.0 * y]]
+            }));
+            rec.log(
+                schema::SPATIAL_BASE,
+                &rerun::LineStrips2D::new(base)
+                    .with_colors([rerun::Color::from_rgb(90, 90, 90)])
+                    .with_radii([rerun::Radius::new_ui_points(1.5)]),
+            )
+            .map_err(rerun_error)?;
+        } else if let Some([x, _]) = frame.block {
+            // Spring-block: the block, its contact patch, the spring to the moving far end.
+            let left = (mag * x) as f32;
+            let block = vec![[left, 0.0], [left + 1.0, 0.0], [left + 1.0, -0.6], [left, -0.6], [left, 0.0]];
+            rec.log(
+                schema::SPATIAL_MESH,
+                &rerun::LineStrips2D::new([block]).with_colors([rerun::Color::from_rgb(150, 150, 150)]),
+            )
+            .map_err(rerun_error)?;
+            rec.log(
+                schema::SPATIAL_CONTACT,
+                &rerun::LineStrips2D::new([[[left, 0.0], [left + 1.0, 0.0]]])
+                    .with_colors([state_colour(frame.segments[0].slip_rate)])
+                    .with_radii([rerun::Radius::new_ui_points(4.0)])
+                    .with_draw_order(10.0),
+            )
+            .map_err(rerun_error)?;
+            let far = 2.5 + (mag * frame.base_displacement) as f32;
+            let start = left + 1.0;
+            let coils = 8;
+            let spring: Vec<[f32; 2]> = (0..=2 * coils)
+                .map(|i| {
+                    let s = i as f32 / (2 * coils) as f32;
+                    let wiggle = if i == 0 || i == 2 * coils {
+                        0.0
+                    } else if i % 2 == 0 {
+                        0.1
+                    } else {
+                        -0.1
+                    };
+                    [start + s * (far - start), -0.3 + wiggle]
+                })
+                .collect();
+            rec.log(schema::SPATIAL_SPRING, &rerun::LineStrips2D::new([spring])).map_err(rerun_error)?;
+            rec.log(
+                schema::SPATIAL_BASE,
+                &rerun::LineStrips2D::new([[[-0.5_f32, 0.05], [far + 0.5, 0.05]]])
+                    .with_colors([rerun::Color::from_rgb(90, 90, 90)]),
+            )
+            .map_err(rerun_error)?;
+        }
+        // The space-time cursor.
+        let width = self.spacetime_width() as f32;
+        let row = (frame.time / self.plan.t_end * SPACETIME_ROWS as f64) as f32;
+        rec.log(
+            schema::SPACETIME_NOW,
+            &rerun::LineStrips2D::new([[[0.0, row], [width, row]]])
+                .with_colors([rerun::Color::from_rgb(255, 255, 255)])
+                .with_radii([rerun::Radius::new_ui_points(1.0)]),
+        )
+        .map_err(rerun_error)?;
+        Ok(())
+    }
+
+    fn spacetime_width(&self) -> usize {
+        let segments = self.layout.as_ref().map_or(1, |l| l.segments.len());
+        segments * (SPACETIME_WIDTH / segments).max(1)
+    }
+
+    /// The space-time image: rows are time bins over `[0, t_end]`, columns segments, colour
+    /// the bin's peak slip rate on a log scale from a hundredth of the threshold to the peak.
+    fn log_spacetime(&self) -> Result<(), SinkError> {
+        let segments = self.layout.as_ref().map_or(1, |l| l.segments.len());
+        let px = (SPACETIME_WIDTH / segments).max(1);
+        let width = segments * px;
+        let floor = self.plan.slip_rate_threshold / 100.0;
+        let peak = self.spacetime.iter().fold(0.0_f32, |m, v| m.max(*v)) as f64;
+        let top = peak.max(self.plan.slip_rate_threshold * 10.0);
+        let mut rgb = Vec::with_capacity(width * SPACETIME_ROWS * 3);
+        for row in 0..SPACETIME_ROWS {
+            for k in 0..segments {
+                let rate = self.spacetime[row * segments + k] as f64;
+                let t =
+                    if rate <= floor { 0.0 } else { ((rate / floor).log10() / (top / floor).log10()).clamp(0.0, 1.0) };
+                let colour = sample(&SLIP_RATE, t);
+                for _ in 0..px {
+                    rgb.extend_from_slice(&colour);
+                }
+            }
+        }
+        let rec = self.rec();
+        rec.log_static(schema::SPACETIME_IMAGE, &rerun::Image::from_rgb24(rgb, [width as u32, SPACETIME_ROWS as u32]))
+            .map_err(rerun_error)?;
+        rec.log_static(
+            format!("{}/scale", schema::SPACETIME),
+            &rerun::TextDocument::new(format!(
+                "Space-time view: segments from the left across ({px} px each), time down ({:.4} s per row over [0, {} s]). \
+                 Colour: peak slip rate in the row, log scale from {floor:.3e} m/s (black) to {top:.3e} m/s (yellow).",
+                self.plan.t_end / SPACETIME_ROWS as f64,
+                self.plan.t_end
+            )),
+        )
+        .map_err(rerun_error)?;
+        Ok(())
+    }
+
+    fn log_catalog(&self, catalog: &Catalog) -> Result<(), SinkError> {
+        let layout = self.layout.as_ref().expect("begin() ran");
+        let name = |k: usize| match &layout.segments[k].name {
+            Some(n) => format!("segment {k} ({n})"),
+            None => format!("segment {k}"),
+        };
+        let rec = self.rec();
+        rec.reset_time();
+        for e in &catalog.events {
+            rec.set_duration_secs(schema::SIM_TIME, e.onset);
+            rec.log(
+                schema::EVENTS,
+                &rerun::TextLog::new(format!(
+                    "{} slips until {:.3} s: {:.4} m, peak {:.3e} m/s, f_t {:.2} -> {:.2} Pa",
+                    name(e.segment),
+                    e.end,
+                    e.slip,
+                    e.peak_slip_rate,
+                    e.traction_before,
+                    e.traction_after
+                ))
+                .with_level(rerun::TextLogLevel::INFO),
+            )
+            .map_err(rerun_error)?;
+        }
+        if layout.kind == "block" {
+            for r in &catalog.ruptures {
+                rec.set_duration_secs(schema::SIM_TIME, r.onset);
+                rec.log(
+                    schema::EVENTS,
+                    &rerun::TextLog::new(format!(
+                        "rupture nucleated at {}: segments {}-{} ({} slipped) until {:.3} s, max slip {:.4} m, friction force drop {:.2} {}",
+                        name(r.nucleation_segment),
+                        r.first_segment,
+                        r.last_segment,
+                        r.segments_slipped,
+                        r.end,
+                        r.max_slip,
+                        r.friction_force_drop,
+                        layout.force_unit
+                    ))
+                    .with_level(rerun::TextLogLevel::WARN),
+                )
+                .map_err(rerun_error)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Sink for RerunSink {
+    fn needs(&self) -> Needs {
+        self.needs
+    }
+
+    fn begin(&mut self, layout: &Layout) -> Result<(), SinkError> {
+        let spec = &self.plan.spec;
+        let segment_probes: Vec<usize> =
+            layout.segments.iter().enumerate().filter(|(_, s)| s.name.is_some()).map(|(k, _)| k).collect();
+        let node_probes: Vec<usize> =
+            layout.surface_nodes.iter().enumerate().filter(|(_, n)| n.name.is_some()).map(|(k, _)| k).collect();
+        let segments = spec.segments.resolve(layout.segments.len(), &segment_probes);
+        let nodes = spec.nodes.resolve(layout.surface_nodes.len(), &node_probes);
+        let spatial = spec.spatial && layout.kind != "point";
+        self.needs.surface_nodes = !nodes.is_empty();
+        self.needs.mesh = spatial && layout.mesh.is_some();
+        let width = layout.segments.last().map_or(1.0, |s| s.right).max(f64::MIN_POSITIVE);
+        let position_colour = |x: f64| {
+            let [r, g, b] = sample(&POSITION, if layout.segments.len() > 1 { x / width } else { 0.5 });
+            rerun::Color::from_rgb(r, g, b)
+        };
+        let rec = self.rec.as_ref().expect("the stream lives until finish");
+        let mut series = Vec::new();
+        let mut styles: Vec<(String, String, rerun::Color)> = Vec::new();
+        for &k in &segments {
+            let seg = &layout.segments[k];
+            let label = match &seg.name {
+                Some(name) => format!("{name} (segment {k})"),
+                None if layout.segments.len() > 1 => format!("segment {k}"),
+                None => "contact".to_string(),
+            };
+            for &q in &spec.quantities {
+                let path = schema::segment_entity(k, q);
+                styles.push((
+                    path.clone(),
+                    format!("{label}: {}", q.label()),
+                    position_colour(0.5 * (seg.left + seg.right)),
+                ));
+                series.push((path, Source::Segment(k, q)));
+            }
+        }
+        for &j in &nodes {
+            let node = &layout.surface_nodes[j];
+            let label = node.name.clone().unwrap_or_else(|| format!("node {j}"));
+            for axis in 0..2 {
+                let path = schema::node_entity(j, axis);
+                let symbol = if axis == 0 { "u_x (m)" } else { "u_y (m)" };
+                styles.push((path.clone(), format!("{label}: {symbol}"), position_colour(node.x)));
+                series.push((path, Source::Node(j, axis)));
+            }
+        }
+        let grey = rerun::Color::from_rgb(200, 200, 200);
+        styles.push((schema::FRICTION_FORCE.into(), format!("friction force ({})", layout.force_unit), grey));
+        series.push((schema::FRICTION_FORCE.into(), Source::FrictionForce));
+        let base_label = if layout.kind == "spring_block" { "spring end u_x (m)" } else { "base u_x (m)" };
+        styles.push((schema::BASE_UX.into(), base_label.into(), grey));
+        series.push((schema::BASE_UX.into(), Source::Base));
+        if layout.kind == "spring_block" {
+            styles.push((schema::BLOCK_X.into(), "block x (m)".into(), position_colour(0.0)));
+            series.push((schema::BLOCK_X.into(), Source::BlockX));
+            styles.push((schema::BLOCK_V.into(), "block v (m/s)".into(), position_colour(1.0)));
+            series.push((schema::BLOCK_V.into(), Source::BlockV));
+        }
+        for (path, name, colour) in &styles {
+            rec.log_static(path.as_str(), &SeriesLines::new().with_names([name.as_str()]).with_colors([*colour]))
+                .map_err(rerun_error)?;
+        }
+        let info = RunInfo {
+            slipfront_version: env!("CARGO_PKG_VERSION").into(),
+            case: self.plan.case.clone(),
+            kind: layout.kind.into(),
+            t_end: self.plan.t_end,
+            dt: self.plan.dt,
+            steps: self.plan.steps,
+            segments: layout.segments.len(),
+            recorded_segments: segments.clone(),
+            recorded_nodes: nodes.clone(),
+            quantities: spec.quantities.clone(),
+            series: series.iter().map(|(p, _)| p.clone()).collect(),
+            spatial,
+            magnification: spec.magnification,
+            slip_rate_threshold: self.plan.slip_rate_threshold,
+            stick_every: spec.stick_every,
+        };
+        let text = toml::to_string(&info).map_err(|e| SinkError(format!("cannot describe the run: {e}")))?;
+        rec.log_static(
+            schema::RUN_INFO,
+            &rerun::TextDocument::new(text).with_media_type(rerun::MediaType::plain_text()),
+        )
+        .map_err(rerun_error)?;
+        default_blueprint(layout, &segments, &nodes, spatial, spec.magnification)
+            .send(rec, rerun::blueprint::BlueprintActivation { make_active: true, make_default: true })
+            .map_err(rerun_error)?;
+        self.values = vec![Vec::with_capacity(ROWS_PER_CHUNK); series.len()];
+        self.series = series;
+        self.spacetime = vec![0.0; SPACETIME_ROWS * layout.segments.len()];
+        self.plan.spec.spatial = spatial;
+        self.layout = Some(layout.clone());
+        Ok(())
+    }
+
+    fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
+        if self.plan.spec.spatial {
+            let segments = frame.segments.len();
+            let row = ((frame.time / self.plan.t_end * SPACETIME_ROWS as f64) as usize).min(SPACETIME_ROWS - 1);
+            for (k, s) in frame.segments.iter().enumerate() {
+                let cell = &mut self.spacetime[row * segments + k];
+                *cell = cell.max(s.slip_rate as f32);
+            }
+        }
+        if !self.should_record(frame) {
+            return Ok(());
+        }
+        self.steps.push(frame.step as i64);
+        self.times.push(frame.time);
+        for ((_, source), values) in self.series.iter().zip(&mut self.values) {
+            values.push(source.of(frame));
+        }
+        self.rows += 1;
+        self.last_recorded_step = Some(frame.step);
+        self.last_time = frame.time;
+        if self.plan.spec.spatial {
+            self.log_geometry(frame)?;
+        }
+        if self.steps.len() >= ROWS_PER_CHUNK {
+            self.flush_columns()?;
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, ending: Ending, catalog: &Catalog) -> Result<(), SinkError> {
+        if self.rec.is_none() {
+            return Ok(());
+        }
+        let mut result = self.flush_columns();
+        if self.layout.is_some() {
+            if self.plan.spec.spatial {
+                result = result.and(self.log_spacetime());
+            }
+            result = result.and(self.log_catalog(catalog));
+            let summary = RunEnding {
+                ending: match ending {
+                    Ending::Completed => "completed",
+                    Ending::Failed => "failed",
+                    Ending::Interrupted => "interrupted",
+                }
+                .into(),
+                last_time: self.last_time,
+                rows: self.rows,
+                slip_events: catalog.events.len(),
+                ruptures: catalog.ruptures.len(),
+            };
+            let text = toml::to_string(&summary).map_err(|e| SinkError(format!("cannot describe the ending: {e}")))?;
+            result = result.and(
+                self.rec()
+                    .log_static(
+                        schema::RUN_ENDING,
+                        &rerun::TextDocument::new(text).with_media_type(rerun::MediaType::plain_text()),
+                    )
+                    .map_err(rerun_error),
+            );
+        }
+        // Dropping the last handle flushes the batcher and writes the file's footer.
+        let rec = self.rec.take().expect("checked above");
+        let flushed = rec.flush_blocking().map_err(|e| SinkError(format!("cannot flush the recording: {e}")));
+        drop(rec);
+        result.and(flushed)
+    }
+}
+
+fn rerun_error(e: impl std::fmt::Display) -> SinkError {
+    SinkError(format!("recording: {e}"))
+}
+
+/// Where a live copy of the recording goes, besides the file.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Viewer {
+    None,
+    /// Start the `rerun` executable found on `PATH`.
+    Spawn,
+    /// A running viewer's gRPC proxy, e.g. `rerun+http://127.0.0.1:9876/proxy`.
+    Connect(String),
+}
+
+/// Opens a recording stream writing to `file` and/or a viewer; `None` if neither is asked for.
+/// A viewer that cannot be reached is an error here, before the run: a stream to an
+/// unreachable viewer would block the file once its queue filled.
+pub fn open_stream(
+    file: Option<&std::path::Path>,
+    viewer: &Viewer,
+    name: &str,
+) -> Result<Option<RecordingStream>, String> {
+    use rerun::sink::{FileSink, GrpcSink};
+    let uri: Option<String> = match viewer {
+        Viewer::None => None,
+        Viewer::Spawn => {
+            if find_on_path("rerun").is_none() {
+                return Err("--spawn needs the Rerun viewer, but `rerun` is not on PATH; install it with \
+                            `pip install rerun-sdk==0.36.3` (or `cargo install rerun-cli@0.36.3`), or use --connect URL"
+                    .into());
+            }
+            let options = rerun::SpawnOptions { wait_for_bind: true, ..Default::default() };
+            let spawned = rerun::spawn(&options).map_err(|e| format!("cannot start the Rerun viewer: {e}"))?;
+            Some(format!("rerun+http://127.0.0.1:{}/proxy", spawned.port))
+        }
+        Viewer::Connect(url) => Some(url.clone()),
+    };
+    let grpc = match &uri {
+        None => None,
+        Some(url) => {
+            let parsed: rerun::external::re_uri::ProxyUri = url.parse().map_err(|e| {
+                format!("--connect {url}: not a Rerun viewer URL ({e}); e.g. rerun+http://127.0.0.1:9876/proxy")
+            })?;
+            let address = format!("{}:{}", parsed.origin.host, parsed.origin.port);
+            let reachable = std::net::ToSocketAddrs::to_socket_addrs(&address).is_ok_and(|mut addrs| {
+                addrs.any(|a| std::net::TcpStream::connect_timeout(&a, std::time::Duration::from_secs(2)).is_ok())
+            });
+            if !reachable {
+                return Err(format!("no Rerun viewer is listening at {url} (start one with `rerun`, or use --spawn)"));
+            }
+            Some(GrpcSink::new(parsed))
+        }
+    };
+    let builder = rerun::RecordingStreamBuilder::new(schema::APP_ID).recording_name(name).enabled(true);
+    let stream = match (file, grpc) {
+        (None, None) => return Ok(None),
+        (Some(path), None) => builder.save(path),
+        (Some(path), Some(grpc)) => {
+            let file = FileSink::new(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            builder.set_sinks((file, grpc))
+        }
+        (None, Some(grpc)) => builder.set_sinks((grpc,)),
+    };
+    stream.map(Some).map_err(|e| format!("cannot open the recording: {e}"))
+}
+
+/// The first executable called `name` on `PATH`.
+fn find_on_path(name: &str) -> Option<std::path::PathBuf> {
+    std::env::var_os("PATH").and_then(|paths| {
+        std::env::split_paths(&paths).map(|dir| dir.join(name)).find(|candidate| {
+            use std::os::unix::fs::PermissionsExt;
+            candidate.metadata().is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0)
+        })
+    })
+}

@@ -1,0 +1,44 @@
+"""Reads scalar columns of a slipfront recording with the official Rerun SDK (an independent
+judge of what slipfront writes) and prints them as CSV: entity,step,sim_time_s,value.
+
+usage: python3 read_recording.py RECORDING.rrd ENTITY [ENTITY ...]
+Exit 3 if the SDK is missing (the caller skips), 1 on any other failure.
+"""
+
+import math
+import socket
+import sys
+
+try:
+    import rerun as rr
+except ImportError:
+    print("rerun-sdk is not installed", file=sys.stderr)
+    sys.exit(3)
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def main() -> None:
+    path, entities = sys.argv[1], sys.argv[2:]
+    with rr.server.Server(host="127.0.0.1", port=free_port(), datasets={"run": [path]}) as server:
+        dataset = server.client().get_dataset("run")
+        frame = dataset.filter_contents(["/" + e for e in entities]).reader(index="step").to_pandas()
+    print("entity,step,sim_time_s,value")
+    for entity in entities:
+        column = f"/{entity}:Scalars:scalars"
+        if column not in frame.columns:
+            print(f"column {column} missing", file=sys.stderr)
+            sys.exit(1)
+        for step, time, cell in zip(frame["step"], frame["sim_time"], frame[column]):
+            if cell is None or (isinstance(cell, float) and math.isnan(cell)):
+                continue
+            seconds = time.total_seconds() if hasattr(time, "total_seconds") else time / 1e9
+            print(f"{entity},{int(step)},{seconds!r},{float(cell[0])!r}")
+
+
+if __name__ == "__main__":
+    main()

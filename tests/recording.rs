@@ -1,0 +1,438 @@
+//! Rerun recordings (issue 4): the schema pinned, values equal to the run's, read by the
+//! official tools, `check` catching damage, the stored blueprint, and the stuck limit read back
+//! from a recording.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use slipfront::case::{self, Case};
+use slipfront::inspect::check::{Expectations, check};
+use slipfront::inspect::{Recording, rrd};
+use slipfront::run::{LoopOptions, Outcome, run};
+use slipfront::scene::{self, Frame, Layout, SegmentSample};
+use slipfront::sink::events::Catalog;
+use slipfront::sink::recording::{RecordingPlan, RerunSink, Viewer, open_stream};
+use slipfront::sink::schema::{self, Quantity};
+use slipfront::sink::{Ending, Sink, SinkError};
+
+fn scratch(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("slipfront-rec-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn case_path(name: &str) -> String {
+    format!("{}/cases/{name}.toml", env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Runs the CLI and returns the recording's path.
+fn run_cli(name: &str, sets: &[&str], out: &Path) -> PathBuf {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_slipfront"));
+    cmd.args(["run", &case_path(name), "--quiet", "--out-dir"]).arg(out);
+    for s in sets {
+        cmd.args(["--set", s]);
+    }
+    let status = cmd.status().unwrap();
+    assert!(status.success(), "slipfront run {name} failed");
+    out.join(format!("{name}.rrd"))
+}
+
+fn check_cli(path: &Path, expect: Option<&Path>) -> (i32, String) {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_slipfront"));
+    cmd.arg("check").arg(path);
+    if let Some(e) = expect {
+        cmd.arg("--expect").arg(e);
+    }
+    let out = cmd.output().unwrap();
+    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    (out.status.code().unwrap_or(-1), text)
+}
+
+#[test]
+fn the_schema_is_pinned() {
+    let out = scratch("schema");
+    let block = rrd::read(&run_cli("paper_triangular", &["time.t_end=20"], &out)).unwrap();
+    let mut expected: Vec<String> = Vec::new();
+    for k in 0..10 {
+        for q in ["traction_t", "traction_n", "R", "R_star", "structure", "slip_rate", "slip"] {
+            expected.push(format!("contact/segments/{k}/{q}"));
+        }
+    }
+    for j in 0..=10 {
+        expected.push(format!("body/nodes/{j}/u_x"));
+        expected.push(format!("body/nodes/{j}/u_y"));
+    }
+    expected.extend(["contact/friction_force", "base/u_x"].map(String::from));
+    let series: Vec<String> = block.series.keys().cloned().collect();
+    let mut sorted = expected.clone();
+    sorted.sort();
+    assert_eq!(series, sorted, "block series");
+    for entity in [
+        "spatial/mesh",
+        "spatial/contact",
+        "spatial/base",
+        "spacetime/slip_rate",
+        "spacetime/now",
+        "slipfront/run",
+        "slipfront/ending",
+    ] {
+        assert!(block.entities.contains(entity), "block recording lacks {entity}");
+    }
+    // Series names and colours are static.
+    let spring = rrd::read(&run_cli("spring_block", &["time.t_end=20"], &out)).unwrap();
+    let mut expected: Vec<String> = Quantity::ALL.iter().map(|q| schema::segment_entity(0, *q)).collect();
+    expected.extend(["contact/friction_force", "base/u_x", "block/x", "block/v"].map(String::from));
+    expected.sort();
+    assert_eq!(spring.series.keys().cloned().collect::<Vec<_>>(), expected, "spring-block series");
+    assert!(spring.entities.contains("spatial/spring"));
+    // Timelines: step counts from 0, sim_time is seconds.
+    let s = &spring.series["block/x"];
+    assert_eq!(s.steps[0], 0);
+    assert_eq!(s.times[0], 0.0);
+    assert!((s.times.last().unwrap() - 20.0).abs() < 1e-9);
+    let info: schema::RunInfo = toml::from_str(&spring.static_texts["slipfront/run"]).unwrap();
+    assert!((s.times[1] - s.steps[1] as f64 * info.dt).abs() < 1e-9, "sim_time = step × dt");
+}
+
+/// Keeps every frame, to compare with what the recording holds.
+#[derive(Default)]
+struct Frames(std::rc::Rc<std::cell::RefCell<Vec<Frame>>>);
+
+impl Sink for Frames {
+    fn needs(&self) -> slipfront::scene::Needs {
+        slipfront::scene::Needs { segment_state: true, surface_nodes: true, mesh: false }
+    }
+    fn begin(&mut self, _: &Layout) -> Result<(), SinkError> {
+        Ok(())
+    }
+    fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
+        self.0.borrow_mut().push(frame.clone());
+        Ok(())
+    }
+    fn finish(&mut self, _: Ending, _: &Catalog) -> Result<(), SinkError> {
+        Ok(())
+    }
+}
+
+fn load(name: &str, sets: &[&str]) -> Case {
+    let owned: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    case::load(Path::new(&case_path(name)), &owned).unwrap()
+}
+
+/// Runs `case` through a Rerun sink and a frame collector in the same run.
+fn run_recorded(case: &Case, path: &Path) -> (Vec<Frame>, Catalog) {
+    let mut scene = scene::build(case).unwrap();
+    let stream = open_stream(Some(path), &Viewer::None, "test").unwrap().unwrap();
+    let plan = RecordingPlan {
+        case: "test".into(),
+        t_end: case.time.t_end,
+        dt: case.time.dt,
+        steps: case.time.steps(),
+        slip_rate_threshold: case.slip_rate_threshold(),
+        spec: case.record.clone(),
+    };
+    let frames = Frames::default();
+    let collected = frames.0.clone();
+    let mut sinks: Vec<Box<dyn Sink>> = vec![Box::new(RerunSink::new(stream, plan)), Box::new(frames)];
+    let options = LoopOptions {
+        progress: false,
+        interrupt: None,
+        slip_rate_threshold: case.slip_rate_threshold(),
+        merge_within: case.events.merge_within,
+    };
+    let Outcome::Completed { catalog, .. } = run(scene.as_mut(), &case.time, &mut sinks, options) else {
+        panic!("the run did not complete")
+    };
+    drop(sinks);
+    let frames = collected.borrow().clone();
+    (frames, catalog)
+}
+
+/// The value of a series entity in a frame, by the documented schema.
+fn value_of(entity: &str, frame: &Frame) -> f64 {
+    match entity {
+        "contact/friction_force" => frame.friction_force,
+        "base/u_x" => frame.base_displacement,
+        "block/x" => frame.block.unwrap()[0],
+        "block/v" => frame.block.unwrap()[1],
+        _ => {
+            let parts: Vec<&str> = entity.split('/').collect();
+            let index: usize = parts[2].parse().unwrap();
+            match parts[1] {
+                "segments" => {
+                    let q = Quantity::ALL.iter().find(|q| q.name() == parts[3]).unwrap();
+                    q.of(&frame.segments[index])
+                }
+                "nodes" => frame.surface_nodes[index][if parts[3] == "u_x" { 0 } else { 1 }],
+                other => panic!("unknown {other}"),
+            }
+        }
+    }
+}
+
+#[test]
+fn recorded_values_equal_the_run_and_the_official_sdk_reads_them() {
+    let out = scratch("values");
+    let path = out.join("spring.rrd");
+    let case = load("spring_block", &["time.t_end=850"]);
+    let (frames, catalog) = run_recorded(&case, &path);
+    assert!(!catalog.events.is_empty(), "the run slipped");
+    let recording = rrd::read(&path).unwrap();
+    let mut compared = 0;
+    for (entity, series) in &recording.series {
+        for (i, &step) in series.steps.iter().enumerate() {
+            let frame = &frames[step as usize];
+            assert_eq!(frame.step as i64, step);
+            // sim_time is stored in integer nanoseconds.
+            assert!((series.times[i] - frame.time).abs() < 1e-9, "{entity} time at step {step}");
+            let expected = value_of(entity, frame);
+            assert!(
+                series.values[i] == expected,
+                "{entity} at step {step}: recorded {} vs run {expected}",
+                series.values[i]
+            );
+            compared += 1;
+        }
+    }
+    println!("{compared} recorded values equal the run's");
+    // Every step while slipping, every 50th in stick.
+    let rows = &recording.series["block/x"].steps;
+    let slipping: Vec<i64> =
+        frames.iter().filter(|f| f.segments[0].slip_rate > case.slip_rate_threshold()).map(|f| f.step as i64).collect();
+    assert!(slipping.iter().all(|s| rows.binary_search(s).is_ok()), "a slipping step was not recorded");
+    assert!(rows.windows(2).all(|w| w[1] - w[0] <= 50), "a stick gap longer than 50 steps");
+
+    // The official Python SDK, an independent reader.
+    let entities = ["contact/friction_force", "block/x", "contact/segments/0/structure", "contact/segments/0/R"];
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/python/read_recording.py");
+    let Some(output) = official_python(script, &path, &entities) else { return };
+    let mut lines = 0;
+    for line in output.lines().skip(1) {
+        let fields: Vec<&str> = line.split(',').collect();
+        let (entity, step, time, value): (&str, usize, f64, f64) =
+            (fields[0], fields[1].parse().unwrap(), fields[2].parse().unwrap(), fields[3].parse().unwrap());
+        let frame = &frames[step];
+        assert!((time - frame.time).abs() < 1e-9, "{entity} at step {step}: time {time} vs {}", frame.time);
+        assert_eq!(value, value_of(entity, frame), "{entity} at step {step} as read by the Rerun SDK");
+        lines += 1;
+    }
+    assert_eq!(lines, 4 * rows.len(), "the SDK read every row of the four columns");
+    println!("the Rerun SDK read {lines} values, all equal to the run's");
+}
+
+/// Runs the official Python reader; `None` (with a message) where it is not installed and the
+/// environment does not require it.
+fn official_python(script: &str, path: &Path, entities: &[&str]) -> Option<String> {
+    let output = Command::new("python3").arg(script).arg(path).args(entities).output();
+    match output {
+        Ok(out) if out.status.success() => Some(String::from_utf8(out.stdout).unwrap()),
+        Ok(out) if out.status.code() == Some(3) => {
+            skip("the official Rerun Python SDK (pip install \"rerun-sdk[datafusion]==0.36.*\")")
+        }
+        Ok(out) => panic!("the Rerun SDK failed to read {}: {}", path.display(), String::from_utf8_lossy(&out.stderr)),
+        Err(_) => skip("python3"),
+    }
+}
+
+fn skip<T>(what: &str) -> Option<T> {
+    assert!(
+        std::env::var_os("SLIPFRONT_REQUIRE_OFFICIAL_TOOLS").is_none(),
+        "{what} is required (SLIPFRONT_REQUIRE_OFFICIAL_TOOLS is set) but missing"
+    );
+    eprintln!("SKIPPED: {what} is not installed; the independent check did not run");
+    None
+}
+
+#[test]
+fn rerun_rrd_verify_accepts_the_recording() {
+    let out = scratch("verify");
+    let path = run_cli("paper_triangular", &["time.t_end=600"], &out);
+    let result = Command::new("rerun").args(["rrd", "verify"]).arg(&path).output();
+    match result {
+        Ok(out) => {
+            let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+            assert!(out.status.success(), "rerun rrd verify failed:\n{text}");
+            assert!(text.contains("verified without error"), "{text}");
+        }
+        Err(_) => {
+            skip::<()>("the `rerun` CLI (pip install \"rerun-sdk[datafusion]==0.36.*\")");
+        }
+    }
+}
+
+#[test]
+fn check_passes_a_fresh_recording_and_its_expectations() {
+    let out = scratch("pass");
+    let path = run_cli("paper_triangular", &["time.t_end=600"], &out);
+    let expect = out.join("expect.toml");
+    std::fs::write(
+        &expect,
+        "[events]\nslip_events = [1, 100]\nruptures = [1, 10]\n\n[[at]]\nentity = \"contact/segments/0/structure\"\ntime = 300.0\nmin = 1.0\nmax = 2.0\n",
+    )
+    .unwrap();
+    let (code, text) = check_cli(&path, Some(&expect));
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("PASS") && text.contains("contact/segments/0/structure = "), "{text}");
+    // An expectation that does not hold is a mismatch (exit 1).
+    std::fs::write(&expect, "[[at]]\nentity = \"contact/friction_force\"\ntime = 300.0\nmax = 0.0\n").unwrap();
+    let (code, text) = check_cli(&path, Some(&expect));
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("FAIL: at[0]: contact/friction_force = "), "{text}");
+}
+
+/// Rewrites a recording without the chunks of `entity`.
+fn without_entity(from: &Path, to: &Path, entity: &str) {
+    use rerun::external::re_log_encoding::{DecoderApp, Encoder};
+    use rerun::log::{Chunk, LogMsg};
+    let file = std::io::BufReader::new(std::fs::File::open(from).unwrap());
+    let kept: Vec<LogMsg> = DecoderApp::decode_eager(file)
+        .unwrap()
+        .map(|m| m.unwrap())
+        .filter(|m| match m {
+            LogMsg::ArrowMsg(_, arrow) => {
+                Chunk::from_arrow_msg(arrow).unwrap().entity_path().to_string() != format!("/{entity}")
+            }
+            _ => true,
+        })
+        .collect();
+    let bytes = Encoder::encode(kept.into_iter().map(Ok)).unwrap();
+    std::fs::write(to, bytes).unwrap();
+}
+
+#[test]
+fn check_catches_a_missing_entity() {
+    let out = scratch("missing");
+    let path = run_cli("paper_triangular", &["time.t_end=50"], &out);
+    let damaged = out.join("missing.rrd");
+    without_entity(&path, &damaged, "contact/segments/3/slip");
+    let (code, text) = check_cli(&damaged, None);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("FAIL: missing series contact/segments/3/slip"), "{text}");
+    without_entity(&path, &damaged, "spatial/contact");
+    let (code, text) = check_cli(&damaged, None);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("FAIL: missing entity spatial/contact"), "{text}");
+}
+
+#[test]
+fn check_catches_a_nan() {
+    let out = scratch("nan");
+    let path = out.join("nan.rrd");
+    let stream = open_stream(Some(&path), &Viewer::None, "nan").unwrap().unwrap();
+    let plan = RecordingPlan {
+        case: "nan".into(),
+        t_end: 1.0,
+        dt: 0.1,
+        steps: 10,
+        slip_rate_threshold: 0.01,
+        spec: slipfront::case::RecordSpec { stick_every: 1, ..Default::default() },
+    };
+    let mut sink = RerunSink::new(stream, plan);
+    let layout = scene::build(&load("spring_block", &[])).unwrap().layout().clone();
+    sink.begin(&layout).unwrap();
+    for step in 0..=10u64 {
+        let mut sample =
+            SegmentSample { traction_t: -1.0, traction_n: 1000.0, r_star: 0.5, structure: 2.0, ..Default::default() };
+        if step == 7 {
+            sample.structure = f64::NAN;
+        }
+        let frame = Frame {
+            step,
+            time: step as f64 * 0.1,
+            dt: if step == 0 { 0.0 } else { 0.1 },
+            segments: vec![sample],
+            block: Some([0.0, 0.0]),
+            ..Frame::default()
+        };
+        sink.record(&frame).unwrap();
+    }
+    sink.finish(Ending::Completed, &Catalog::default()).unwrap();
+    let recording: Recording = rrd::read(&path).unwrap();
+    let report = check(&recording, &Expectations::default());
+    assert!(
+        report.problems.iter().any(|p| p.contains("contact/segments/0/structure = NaN at step 7")),
+        "{:?}",
+        report.problems
+    );
+    let (code, _) = check_cli(&path, None);
+    assert_eq!(code, 1);
+}
+
+#[test]
+fn check_catches_a_truncated_file_and_refuses_a_non_recording() {
+    let out = scratch("truncated");
+    let path = run_cli("paper_triangular", &["time.t_end=100"], &out);
+    let bytes = std::fs::read(&path).unwrap();
+    let cut = out.join("cut.rrd");
+    std::fs::write(&cut, &bytes[..bytes.len() * 6 / 10]).unwrap();
+    let (code, text) = check_cli(&cut, None);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("FAIL: no ending record"), "{text}");
+    let garbage = out.join("garbage.rrd");
+    std::fs::write(&garbage, b"this is not a recording").unwrap();
+    let (code, text) = check_cli(&garbage, None);
+    assert_eq!(code, 2, "{text}");
+    assert!(text.contains("is not a Rerun recording"), "{text}");
+    let (code, text) = check_cli(&out.join("absent.rrd"), None);
+    assert_eq!(code, 2, "{text}");
+}
+
+#[test]
+fn the_blueprint_is_stored_with_its_views() {
+    let out = scratch("blueprint");
+    let recording = rrd::read(&run_cli("paper_triangular", &["time.t_end=20"], &out)).unwrap();
+    let view = |name: &str| {
+        recording
+            .views
+            .iter()
+            .find(|v| v.name == name)
+            .unwrap_or_else(|| panic!("no view {name}: {:?}", recording.views))
+    };
+    let block = view("Block");
+    assert_eq!((block.class.as_str(), block.origin.as_str()), ("2D", "/spatial"));
+    let spacetime = view("Space-time: slip rate");
+    assert_eq!((spacetime.class.as_str(), spacetime.origin.as_str()), ("2D", "/spacetime"));
+    // The probes of the paper case: segments A-F = 0, 2, 4, 5, 7, 9, nodes 1-6 = 0, 2, ..., 10.
+    let traction = view("Tangential traction f_t (Pa)");
+    assert_eq!(traction.class, "TimeSeries");
+    assert_eq!(traction.contents, [0, 2, 4, 5, 7, 9].map(|k| format!("contact/segments/{k}/traction_t")));
+    let structure = view("Degree of structure 1/R*");
+    assert_eq!(structure.contents, [0, 2, 4, 5, 7, 9].map(|k| format!("contact/segments/{k}/structure")));
+    let displacement = view("Displacement u_x (m)");
+    let mut nodes: Vec<String> = [0, 2, 4, 6, 8, 10].iter().map(|j| format!("body/nodes/{j}/u_x")).collect();
+    nodes.push("base/u_x".into());
+    assert_eq!(displacement.contents, nodes);
+    let events = view("Slip events");
+    assert_eq!((events.class.as_str(), events.origin.as_str()), ("TextLog", "/events"));
+    assert_eq!(recording.views.len(), 6);
+}
+
+#[test]
+fn stuck_limit_read_from_the_recording_matches_the_closed_form() {
+    let out = scratch("stuck");
+    let path = run_cli(
+        "paper_triangular",
+        &[
+            "friction.mu_s=400",
+            "friction.mu_k=200",
+            "time.t_end=50",
+            "scene.normal_traction={kind=\"uniform\", value=1000}",
+        ],
+        &out,
+    );
+    let recording = rrd::read(&path).unwrap();
+    let force = &recording.series["contact/friction_force"];
+    let base = &recording.series["base/u_x"];
+    let (w, h, g, alpha) = (10.0, 1.0, 500.0, 1.0e6);
+    let mut checked = 0;
+    for i in 0..force.times.len() {
+        if force.times[i] < 40.0 {
+            continue;
+        }
+        let expected = w * base.values[i] / (h / g + 1.0 / alpha);
+        let relative = (force.values[i] - expected).abs() / expected;
+        assert!(relative < 5e-3, "t = {}: recorded {} vs closed form {expected}", force.times[i], force.values[i]);
+        checked += 1;
+    }
+    assert!(checked > 10, "rows after 40 s: {checked}");
+}
