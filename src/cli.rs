@@ -8,6 +8,7 @@ use std::sync::atomic::AtomicBool;
 use clap::{Args, Parser, Subcommand};
 
 use crate::case;
+use crate::figures;
 use crate::inspect::{self, check::Expectations, check::check};
 use crate::run::{LoopOptions, Outcome, run};
 use crate::scene;
@@ -44,6 +45,18 @@ pub enum Command {
     ///
     /// Exit codes: 0 pass, 1 mismatch, 2 unreadable.
     Check(CheckArgs),
+    /// Draw PNG plots like the paper's Figures 8 (displacement at the probe nodes) and 9
+    /// (traction and 1/R* at the probe segments) from a recording.
+    Figures(FiguresArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct FiguresArgs {
+    /// The recording (.rrd).
+    pub recording: PathBuf,
+    /// Folder for the PNG files (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "recordings")]
+    pub out: PathBuf,
 }
 
 #[derive(Debug, Args)]
@@ -93,6 +106,7 @@ pub fn main_with(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Run(args) => run_command(args),
         Command::Check(args) => check_command(args),
+        Command::Figures(args) => figures_command(args),
     }
 }
 
@@ -210,6 +224,22 @@ fn check_command(args: CheckArgs) -> ExitCode {
     let report = check(&recording, &expect);
     print!("{}", report.render());
     if report.passed() { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED) }
+}
+
+fn figures_command(args: FiguresArgs) -> ExitCode {
+    let recording = match inspect::rrd::read(&args.recording) {
+        Ok(r) => r,
+        Err(e) => return fail(EXIT_INVALID, e),
+    };
+    match figures::write_figures(&recording, &args.out) {
+        Ok(paths) => {
+            for path in paths {
+                println!("{}", path.display());
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(EXIT_FAILED, e),
+    }
 }
 
 /// `<dir>/<x>.ruptures.csv` beside `<dir>/<x>.events.csv` (or `<stem>.ruptures.csv`).

@@ -5,6 +5,7 @@ pub mod case;
 pub mod cli;
 pub mod dynamics;
 pub mod fem;
+pub mod figures;
 pub mod friction;
 pub mod inspect;
 pub mod run;

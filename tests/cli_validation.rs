@@ -148,6 +148,64 @@ fn block_rules() {
 }
 
 #[test]
+fn record_rules() {
+    let b = case("paper_triangular.toml");
+    expect_invalid(&b, &["record.stick_every=0"], "record.stick_every = 0 must be at least 1");
+    expect_invalid(&b, &["record.magnification=0"], "record.magnification = 0 must be greater than 0");
+    expect_invalid(
+        &b,
+        &["record.segments=[3, 12]"],
+        "record.segments[1] = 12 must be below 10 (the scene has 10 segments, numbered from 0 at the left)",
+    );
+    expect_invalid(
+        &case("spring_block.toml"),
+        &["record.nodes=[0]"],
+        "record.nodes[0] = 0 is not allowed: a spring_block scene has no nodes",
+    );
+    expect_invalid(&b, &["record.quantities=[\"traction_t\", \"mu\"]"], "record.quantities[1]: unknown variant `mu`");
+    expect_invalid(&b, &["record.segments=\"some\""], "record.segments: data did not match any variant");
+}
+
+#[test]
+fn viewer_options_are_checked_before_solving() {
+    let out = scratch_dir("viewer");
+    let output = binary()
+        .args([
+            "run",
+            &case("spring_block.toml"),
+            "--quiet",
+            "--connect",
+            "rerun+http://127.0.0.1:9/proxy",
+            "--out-dir",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("no Rerun viewer is listening at rerun+http://127.0.0.1:9/proxy"), "{stderr}");
+    let output = binary()
+        .args(["run", &case("spring_block.toml"), "--quiet", "--connect", "http:/nonsense", "--out-dir"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("not a Rerun viewer URL"));
+    // --spawn with no `rerun` on PATH says so.
+    let output = binary()
+        .args(["run", &case("spring_block.toml"), "--quiet", "--spawn", "--out-dir"])
+        .arg(&out)
+        .env("PATH", "/nonexistent")
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("`rerun` is not on PATH"));
+    // --rrd and --no-rrd exclude each other.
+    let output = binary().args(["run", &case("spring_block.toml"), "--rrd", "x.rrd", "--no-rrd"]).output().unwrap();
+    assert_eq!(output.status.code(), Some(2));
+}
+
+#[test]
 fn several_violations_are_all_reported() {
     let (code, stderr) = run_case(&case("spring_block.toml"), &["friction.mu_k=0.5", "time.dt=-1"]);
     assert_eq!(code, 2);

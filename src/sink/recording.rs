@@ -406,7 +406,17 @@ impl Sink for RerunSink {
             steps: self.plan.steps,
             segments: layout.segments.len(),
             recorded_segments: segments.clone(),
+            segment_labels: segments
+                .iter()
+                .map(|&k| layout.segments[k].name.clone().unwrap_or_else(|| format!("segment {k}")))
+                .collect(),
             recorded_nodes: nodes.clone(),
+            node_labels: nodes
+                .iter()
+                .map(|&j| layout.surface_nodes[j].name.clone().unwrap_or_else(|| format!("node {j}")))
+                .collect(),
+            probe_segments: segment_probes.clone(),
+            probe_nodes: node_probes.clone(),
             quantities: spec.quantities.clone(),
             series: series.iter().map(|(p, _)| p.clone()).collect(),
             spatial,

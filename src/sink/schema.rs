@@ -137,7 +137,14 @@ pub struct RunInfo {
     /// Contact segments of the scene.
     pub segments: usize,
     pub recorded_segments: Vec<usize>,
+    /// Label of each recorded segment (its probe name, else `segment k`).
+    pub segment_labels: Vec<String>,
     pub recorded_nodes: Vec<usize>,
+    /// Label of each recorded node (its probe name, else `node j`).
+    pub node_labels: Vec<String>,
+    /// Which recorded segments and nodes are named probes.
+    pub probe_segments: Vec<usize>,
+    pub probe_nodes: Vec<usize>,
     pub quantities: Vec<Quantity>,
     /// Every scalar time series, by entity path.
     pub series: Vec<String>,

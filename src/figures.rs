@@ -1,0 +1,227 @@
+//! `slipfront figures`: PNG plots like the paper's Figures 8 and 9, from a recording.
+//!
+//! * `<case>_fig8_displacement.png`: horizontal displacement at the probe nodes and of the base.
+//! * `<case>_fig9_traction_structure.png`: tangential traction and degree of structure `1/R*` at
+//!   the probe segments.
+//! * `<case>_spacetime.png`: slip rate of every recorded segment against position (across) and
+//!   time (down), on a log colour scale: how ruptures nucleate and propagate.
+//!
+//! Probes are the case's named nodes and segments; without names, up to six recorded ones
+//! spread along the surface.
+
+use std::path::{Path, PathBuf};
+use std::sync::Once;
+
+use plotters::prelude::*;
+
+use crate::inspect::{Recording, Series};
+use crate::sink::colormap::{POSITION, SLIP_RATE, sample};
+use crate::sink::schema::{self, Quantity, RunInfo};
+
+const WIDTH: u32 = 1400;
+const HEIGHT: u32 = 800;
+
+/// Registers the embedded DejaVu Sans as the plots' font (plotters' `ab_glyph` backend reads no
+/// system fonts).
+fn register_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
+            .unwrap_or_else(|_| panic!("the embedded DejaVu Sans is a valid font"));
+    });
+}
+
+/// One line of a plot.
+struct Line<'a> {
+    label: String,
+    series: &'a Series,
+    colour: RGBColor,
+}
+
+/// Writes both figures into `out`; returns their paths.
+pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, String> {
+    register_font();
+    let info: RunInfo = recording
+        .static_texts
+        .get(schema::RUN_INFO)
+        .ok_or("the recording has no run description (slipfront/run)")
+        .and_then(|t| toml::from_str(t).map_err(|_| "the run description is unreadable"))?;
+    std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    let colour = |position: usize, count: usize| {
+        let [r, g, b] = sample(&POSITION, if count > 1 { position as f64 / (count - 1) as f64 } else { 0.5 });
+        RGBColor(r, g, b)
+    };
+    let pick = |recorded: &[usize], probes: &[usize]| -> Vec<usize> {
+        if !probes.is_empty() {
+            return recorded.iter().enumerate().filter(|(_, k)| probes.contains(k)).map(|(i, _)| i).collect();
+        }
+        let n = recorded.len();
+        if n <= 6 { (0..n).collect() } else { (0..6).map(|i| i * (n - 1) / 5).collect() }
+    };
+
+    // Figure 8: displacements.
+    let mut displacement = Vec::new();
+    let nodes = pick(&info.recorded_nodes, &info.probe_nodes);
+    for (rank, &i) in nodes.iter().enumerate() {
+        if let Some(series) = recording.series.get(&schema::node_entity(info.recorded_nodes[i], 0)) {
+            displacement.push(Line { label: info.node_labels[i].clone(), series, colour: colour(rank, nodes.len()) });
+        }
+    }
+    if let Some(series) = recording.series.get(schema::BLOCK_X) {
+        displacement.push(Line { label: "block".into(), series, colour: colour(0, 1) });
+    }
+    if let Some(series) = recording.series.get(schema::BASE_UX) {
+        let label = if info.kind == "spring_block" { "spring end" } else { "base" };
+        displacement.push(Line { label: label.into(), series, colour: RGBColor(120, 120, 120) });
+    }
+    let fig8 = out.join(format!("{}_fig8_displacement.png", info.case));
+    plot(&fig8, &[(&format!("{}: horizontal displacement", info.case), "u_x (m)", &displacement)], info.t_end)?;
+
+    // Figure 9: traction and degree of structure at the probe segments.
+    let segments = pick(&info.recorded_segments, &info.probe_segments);
+    let lines_for = |q: Quantity| -> Vec<Line<'_>> {
+        segments
+            .iter()
+            .enumerate()
+            .filter_map(|(rank, &i)| {
+                recording.series.get(&schema::segment_entity(info.recorded_segments[i], q)).map(|series| Line {
+                    label: info.segment_labels[i].clone(),
+                    series,
+                    colour: colour(rank, segments.len()),
+                })
+            })
+            .collect()
+    };
+    let traction = lines_for(Quantity::TractionT);
+    let structure = lines_for(Quantity::Structure);
+    let fig9 = out.join(format!("{}_fig9_traction_structure.png", info.case));
+    plot(
+        &fig9,
+        &[
+            (&format!("{}: tangential traction", info.case), "f_t (Pa)", &traction),
+            ("degree of structure", "1/R*", &structure),
+        ],
+        info.t_end,
+    )?;
+    let spacetime = out.join(format!("{}_spacetime.png", info.case));
+    let rates: Vec<(f64, &Series)> = info
+        .recorded_segments
+        .iter()
+        .filter_map(|&k| recording.series.get(&schema::segment_entity(k, Quantity::SlipRate)).map(|s| (k as f64, s)))
+        .collect();
+    if rates.is_empty() {
+        return Ok(vec![fig8, fig9]);
+    }
+    plot_spacetime(&spacetime, &info, &rates)?;
+    Ok(vec![fig8, fig9, spacetime])
+}
+
+/// Slip rate against segment (across) and time (down), log colours from a hundredth of the
+/// event threshold to the peak.
+fn plot_spacetime(path: &Path, info: &RunInfo, rates: &[(f64, &Series)]) -> Result<(), String> {
+    let floor = info.slip_rate_threshold / 100.0;
+    let peak = rates.iter().flat_map(|(_, s)| s.values.iter().copied()).fold(0.0_f64, f64::max);
+    let top = peak.max(info.slip_rate_threshold * 10.0);
+    let segments = info.segments as f64;
+    let mut pixels = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut pixels, (WIDTH, HEIGHT)).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_error)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(
+                format!("{}: slip rate, black {floor:.1e} m/s to yellow {top:.1e} m/s (log)", info.case),
+                ("sans-serif", 24),
+            )
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(80)
+            .build_cartesian_2d(0.0..segments, info.t_end..0.0)
+            .map_err(draw_error)?;
+        chart
+            .configure_mesh()
+            .x_desc("segment (from the left)")
+            .y_desc("time (s)")
+            .label_style(("sans-serif", 16))
+            .disable_mesh()
+            .draw()
+            .map_err(draw_error)?;
+        for (k, series) in rates {
+            let cells = series.times.windows(2).zip(&series.values[1..]).map(|(t, &rate)| {
+                let x =
+                    if rate <= floor { 0.0 } else { ((rate / floor).log10() / (top / floor).log10()).clamp(0.0, 1.0) };
+                let [r, g, b] = sample(&SLIP_RATE, x);
+                Rectangle::new([(*k, t[0]), (k + 1.0, t[1])], RGBColor(r, g, b).filled())
+            });
+            chart.draw_series(cells).map_err(draw_error)?;
+        }
+        root.present().map_err(draw_error)?;
+    }
+    write_png(path, &pixels)
+}
+
+/// Draws stacked panels of lines against time and writes a PNG.
+fn plot(path: &Path, panels: &[(&str, &str, &Vec<Line<'_>>)], t_end: f64) -> Result<(), String> {
+    let mut pixels = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut pixels, (WIDTH, HEIGHT)).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_error)?;
+        let areas = root.split_evenly((panels.len(), 1));
+        for ((title, unit, lines), area) in panels.iter().zip(areas) {
+            let (lo, hi) = lines
+                .iter()
+                .flat_map(|l| l.series.values.iter().copied().filter(|v| v.is_finite()))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+            let (lo, hi) = if lo.is_finite() && hi > lo { (lo, hi) } else { (lo.min(0.0) - 1.0, hi.max(0.0) + 1.0) };
+            let pad = 0.05 * (hi - lo);
+            let mut chart = ChartBuilder::on(&area)
+                .caption(*title, ("sans-serif", 24))
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(80)
+                .build_cartesian_2d(0.0..t_end, (lo - pad)..(hi + pad))
+                .map_err(draw_error)?;
+            chart
+                .configure_mesh()
+                .x_desc("time (s)")
+                .y_desc(*unit)
+                .label_style(("sans-serif", 16))
+                .draw()
+                .map_err(draw_error)?;
+            for line in lines.iter() {
+                let colour = line.colour;
+                chart
+                    .draw_series(LineSeries::new(
+                        line.series.times.iter().copied().zip(line.series.values.iter().copied()),
+                        colour.stroke_width(2),
+                    ))
+                    .map_err(draw_error)?
+                    .label(line.label.clone())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3)));
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperLeft)
+                .background_style(WHITE.mix(0.8))
+                .border_style(BLACK)
+                .label_font(("sans-serif", 16))
+                .draw()
+                .map_err(draw_error)?;
+        }
+        root.present().map_err(draw_error)?;
+    }
+    write_png(path, &pixels)
+}
+
+fn write_png(path: &Path, pixels: &[u8]) -> Result<(), String> {
+    let file = std::fs::File::create(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), WIDTH, HEIGHT);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header().map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    writer.write_image_data(pixels).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    writer.finish().map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+fn draw_error(e: impl std::fmt::Display) -> String {
+    format!("cannot draw the figure: {e}")
+}
