@@ -488,3 +488,48 @@ fn a_failed_run_leaves_a_finished_recording_up_to_its_last_good_step() {
     assert_eq!(code, 0, "{text}");
     assert!(text.contains("run failed"), "{text}");
 }
+
+#[test]
+fn streaming_to_a_viewer_and_writing_the_file_work_together() {
+    // The official CLI's headless gRPC proxy stands in for a viewer.
+    let port = std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
+    // `python3 -m rerun` starts the real binary as a child: run it in its own process group,
+    // detached from our output, and end the whole group.
+    use std::os::unix::process::CommandExt;
+    let server = Command::new("python3")
+        .args(["-m", "rerun", "--serve-grpc", "--port", &port.to_string()])
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .process_group(0)
+        .spawn();
+    let Ok(mut server) = server else {
+        skip::<()>("python3");
+        return;
+    };
+    let group = format!("-{}", server.id());
+    let stop = move |server: &mut std::process::Child| {
+        let _ = Command::new("kill").args(["-TERM", "--", &group]).status();
+        let _ = server.wait();
+    };
+    let up = (0..100).any(|_| {
+        std::thread::sleep(std::time::Duration::from_millis(100));
+        std::net::TcpStream::connect(("127.0.0.1", port)).is_ok()
+    });
+    if !up {
+        stop(&mut server);
+        skip::<()>("the `rerun` CLI's gRPC server (pip install \"rerun-sdk[datafusion]==0.36.*\")");
+        return;
+    }
+    let out = scratch("connect");
+    let status = Command::new(env!("CARGO_BIN_EXE_slipfront"))
+        .args(["run", &case_path("paper_triangular"), "--quiet", "--set", "time.t_end=300"])
+        .args(["--connect", &format!("rerun+http://127.0.0.1:{port}/proxy"), "--out-dir"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    stop(&mut server);
+    assert!(status.success(), "run with --connect");
+    let (code, text) = check_cli(&out.join("paper_triangular.rrd"), None);
+    assert_eq!(code, 0, "{text}");
+}
