@@ -14,7 +14,8 @@ use crate::run::{LoopOptions, Outcome, run};
 use crate::scene;
 use crate::sink::Sink;
 use crate::sink::catalog::CatalogSink;
-use crate::sink::recording::{RecordingPlan, RerunSink, Viewer, open_stream};
+use crate::sink::recording::{RerunSink, Viewer, open_stream};
+use crate::sink::schema::RecordingPlan;
 
 /// Exit code for invalid input (case, arguments, output folder).
 pub const EXIT_INVALID: u8 = 2;
@@ -179,7 +180,7 @@ fn run_command(args: RunArgs) -> ExitCode {
     );
     let mut outputs: Vec<String> = rrd_path.iter().map(|p| p.display().to_string()).collect();
     outputs.push(events_path.display().to_string());
-    if scene.layout().kind == "block" {
+    if scene.layout().kind == scene::SceneKind::Block {
         outputs.push(ruptures_path.display().to_string());
     }
     let written = outputs.join(", ");

@@ -16,6 +16,7 @@ use plotters::prelude::*;
 
 use crate::inspect::{Recording, Series};
 use crate::sink::colormap::{POSITION, SLIP_RATE, sample};
+use crate::scene::SceneKind;
 use crate::sink::schema::{self, Quantity, RunInfo};
 
 const WIDTH: u32 = 1400;
@@ -71,7 +72,7 @@ pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, 
         displacement.push(Line { label: "block".into(), series, colour: colour(0, 1) });
     }
     if let Some(series) = recording.series.get(schema::BASE_UX) {
-        let label = if info.kind == "spring_block" { "spring end" } else { "base" };
+        let label = if info.kind == SceneKind::SpringBlock { "spring end" } else { "base" };
         displacement.push(Line { label: label.into(), series, colour: RGBColor(120, 120, 120) });
     }
     let fig8 = out.join(format!("{}_fig8_displacement.png", info.case));

@@ -11,7 +11,8 @@ use slipfront::inspect::{Recording, rrd};
 use slipfront::run::{LoopOptions, Outcome, run};
 use slipfront::scene::{self, Frame, Layout, SegmentSample};
 use slipfront::sink::events::Catalog;
-use slipfront::sink::recording::{RecordingPlan, RerunSink, Viewer, open_stream};
+use slipfront::sink::recording::{RerunSink, Viewer, open_stream};
+use slipfront::sink::schema::RecordingPlan;
 use slipfront::sink::schema::{self, Quantity};
 use slipfront::sink::{Ending, Sink, SinkError};
 

@@ -339,7 +339,7 @@ impl ProbesSpec {
 }
 
 /// `[record]`: what goes into the recording.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct RecordSpec {
     /// Per-segment quantities (default all): `traction_t`, `traction_n`, `R`, `R_star`,
@@ -395,19 +395,22 @@ fn default_spatial() -> bool {
 }
 
 /// Which segments or nodes get time series.
-#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
 #[serde(untagged)]
 pub enum Selection {
     /// `"all"`, `"probes"` or `"auto"` (the default).
     Named(SelectionName),
     /// Explicit indices from the left.
     Indices(Vec<usize>),
-    #[serde(skip)]
-    #[default]
-    Auto,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+impl Default for Selection {
+    fn default() -> Self {
+        Selection::Named(SelectionName::Auto)
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SelectionName {
     All,
@@ -423,7 +426,7 @@ impl Selection {
     pub fn resolve(&self, count: usize, probes: &[usize]) -> Vec<usize> {
         let auto = || if count <= MAX_DEFAULT_SEGMENTS + 1 { (0..count).collect() } else { probes.to_vec() };
         match self {
-            Selection::Auto | Selection::Named(SelectionName::Auto) => auto(),
+            Selection::Named(SelectionName::Auto) => auto(),
             Selection::Named(SelectionName::All) => (0..count).collect(),
             Selection::Named(SelectionName::Probes) => probes.to_vec(),
             Selection::Indices(list) => list.clone(),

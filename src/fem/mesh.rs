@@ -6,7 +6,7 @@
 /// Nodes are numbered row by row from the bottom left: node `(i, j)` has id `j (nx+1) + i`.
 /// Only nodes below the top carry degrees of freedom: node id `k < (nx+1) ny` owns
 /// `2k` (x) and `2k + 1` (y).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StructuredMesh {
     pub width: f64,
     pub height: f64,

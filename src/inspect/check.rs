@@ -13,6 +13,7 @@ use std::path::Path;
 use serde::Deserialize;
 
 use super::Recording;
+use crate::scene::SceneKind;
 use crate::sink::schema::{self, RunEnding, RunInfo};
 
 /// Optional expectations (`--expect EXPECT.toml`).
@@ -205,7 +206,7 @@ pub fn check(recording: &Recording, expect: &Expectations) -> Report {
     }
     if let Some(e) = &ending {
         let logged = recording.text_logs.iter().filter(|(entity, _, _)| entity == schema::EVENTS).count();
-        let expected = e.slip_events + if info.kind == "block" { e.ruptures } else { 0 };
+        let expected = e.slip_events + if info.kind == SceneKind::Block { e.ruptures } else { 0 };
         if logged != expected {
             problems.push(format!("{logged} entries in the event log, the catalog holds {expected}"));
         }

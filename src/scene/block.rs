@@ -1,7 +1,7 @@
 //! `kind = "block"`: the paper's §3 analysis, a plane-strain elastic block whose bottom is the
 //! frictional contact against a moving rigid base.
 
-use super::{
+use super::{SceneKind, 
     Frame, Layout, Needs, NodeInfo, RunError, Scene, SegmentInfo, advance_dynamics, segment_sample, step_error,
 };
 use crate::case::{BlockSpec, Case};
@@ -38,7 +38,7 @@ impl BlockScene {
         };
         let dx = mesh.dx();
         let layout = Layout {
-            kind: "block",
+            kind: SceneKind::Block,
             segments: (0..mesh.nx)
                 .map(|k| SegmentInfo {
                     left: k as f64 * dx,
@@ -51,7 +51,6 @@ impl BlockScene {
                 .collect(),
             mesh: Some(mesh),
             driving_velocity: spec.base_velocity.abs(),
-            force_unit: "N/m",
         };
         Ok(Self { dynamics, mesh, layout })
     }

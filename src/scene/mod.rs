@@ -7,6 +7,8 @@ pub mod spring_block;
 
 use std::fmt;
 
+use serde::{Deserialize, Serialize};
+
 use crate::case::{Case, SceneSpec};
 use crate::dynamics::StepError;
 use crate::friction::{ContactState, FrictionError, FrictionParams};
@@ -32,11 +34,44 @@ impl Needs {
     }
 }
 
+/// The kinds of scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SceneKind {
+    Point,
+    SpringBlock,
+    Block,
+}
+
+impl SceneKind {
+    /// The case file's name for it.
+    pub fn name(self) -> &'static str {
+        match self {
+            SceneKind::Point => "point",
+            SceneKind::SpringBlock => "spring_block",
+            SceneKind::Block => "block",
+        }
+    }
+
+    /// Unit of the total friction force: per unit thickness for a block, per unit area else.
+    pub fn force_unit(self) -> &'static str {
+        match self {
+            SceneKind::Block => "N/m",
+            _ => "Pa",
+        }
+    }
+}
+
+impl fmt::Display for SceneKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// What a scene is made of, for sinks that label and place things.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Layout {
-    /// `point`, `spring_block` or `block`.
-    pub kind: &'static str,
+    pub kind: SceneKind,
     /// Contact segments from the left, with their extent along x (m).
     pub segments: Vec<SegmentInfo>,
     /// Contact-surface nodes from the left, with their x (m). Empty without a body.
@@ -45,12 +80,10 @@ pub struct Layout {
     pub mesh: Option<crate::fem::StructuredMesh>,
     /// The driving velocity (m/s).
     pub driving_velocity: f64,
-    /// Unit of the total friction force: `N/m` (per unit thickness) or `Pa` (per unit area).
-    pub force_unit: &'static str,
 }
 
 /// A contact segment.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SegmentInfo {
     pub left: f64,
     pub right: f64,
@@ -59,7 +92,7 @@ pub struct SegmentInfo {
 }
 
 /// A contact-surface node.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct NodeInfo {
     pub x: f64,
     pub name: Option<String>,

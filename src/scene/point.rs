@@ -1,6 +1,6 @@
 //! `kind = "point"`: the friction law alone, driven by a prescribed relative sliding velocity.
 
-use super::{Frame, Layout, Needs, RunError, Scene, SegmentInfo, friction_error, segment_sample};
+use super::{SceneKind, Frame, Layout, Needs, RunError, Scene, SegmentInfo, friction_error, segment_sample};
 use crate::case::PointSpec;
 use crate::friction::{ContactState, FrictionParams, update};
 
@@ -33,12 +33,11 @@ impl PointScene {
             })
             .collect();
         let layout = Layout {
-            kind: "point",
+            kind: SceneKind::Point,
             segments: vec![SegmentInfo { left: 0.0, right: 0.0, name: None }],
             surface_nodes: Vec::new(),
             mesh: None,
             driving_velocity: spec.phases.iter().fold(0.0_f64, |m, p| m.max(p.velocity.abs())),
-            force_unit: "Pa",
         };
         Self { params, phases, layout, state, time: 0.0, step: 0, last_increment: 0.0, relative_slip: 0.0 }
     }

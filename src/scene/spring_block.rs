@@ -1,7 +1,7 @@
 //! `kind = "spring_block"`: a rigid block on the frictional contact, pulled through a spring
 //! whose far end moves at a constant velocity (Ozaki & Hashiguchi 2010).
 
-use super::{Frame, Layout, Needs, RunError, Scene, SegmentInfo, advance_dynamics, segment_sample, step_error};
+use super::{SceneKind, Frame, Layout, Needs, RunError, Scene, SegmentInfo, advance_dynamics, segment_sample, step_error};
 use crate::case::{Case, SpringBlockSpec};
 use crate::dynamics::sparse::SymmetricMatrix;
 use crate::dynamics::{ContactBoundary, ContactPoint, Dynamics, LinearBody, WilsonSettings};
@@ -37,12 +37,11 @@ impl SpringBlockScene {
         };
         let dynamics = Dynamics::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |_| 0))?;
         let layout = Layout {
-            kind: "spring_block",
+            kind: SceneKind::SpringBlock,
             segments: vec![SegmentInfo { left: 0.0, right: 0.0, name: None }],
             surface_nodes: Vec::new(),
             mesh: None,
             driving_velocity: spec.velocity.abs(),
-            force_unit: "Pa",
         };
         Ok(Self { dynamics, layout, velocity: spec.velocity })
     }

@@ -7,7 +7,7 @@ use rerun::blueprint::{
 };
 
 use super::schema::{self, Quantity};
-use crate::scene::Layout;
+use crate::scene::{Layout, SceneKind};
 
 /// Names of the views, for readers that check them.
 pub const VIEW_BLOCK: &str = "Block";
@@ -39,7 +39,7 @@ pub fn default_blueprint(
         TimeSeriesView::new(VIEW_STRUCTURE).with_contents(segment_series(Quantity::Structure)).into(),
     ];
     let mut displacement: Vec<String> = plot_nodes.iter().map(|&j| schema::node_entity(j, 0)).collect();
-    if layout.kind == "spring_block" {
+    if layout.kind == SceneKind::SpringBlock {
         displacement.push(schema::BLOCK_X.into());
     }
     displacement.push(schema::BASE_UX.into());

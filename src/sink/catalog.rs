@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use super::events::{Catalog, Rupture, SlipEvent};
 use super::{Ending, Sink, SinkError};
-use crate::scene::{Frame, Layout};
+use crate::scene::{Frame, Layout, SceneKind};
 
 /// Header of the events CSV.
 pub const EVENTS_HEADER: &str = "segment,onset_s,end_s,slip_m,peak_slip_rate_m_s,traction_before_pa,traction_after_pa";
@@ -27,7 +27,7 @@ impl CatalogSink {
 
 impl Sink for CatalogSink {
     fn begin(&mut self, layout: &Layout) -> Result<(), SinkError> {
-        if layout.kind != "block" {
+        if layout.kind != SceneKind::Block {
             self.ruptures_path = None;
         }
         // Fail now, not after the run, if the file cannot be written.

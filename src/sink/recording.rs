@@ -11,10 +11,9 @@ use rerun::{RecordingStream, Scalars, SeriesLines, TimeColumn};
 use super::blueprint::default_blueprint;
 use super::colormap::{POSITION, SLIP_RATE, sample};
 use super::events::Catalog;
-use super::schema::{self, Quantity, RunEnding, RunInfo};
+use super::schema::{self, Decimator, RecordingPlan, RunEnding, RunInfo, Source, selection, series_plan};
 use super::{Ending, Sink, SinkError};
-use crate::case::RecordSpec;
-use crate::scene::{Frame, Layout, Needs};
+use crate::scene::{Frame, Layout, Needs, SceneKind};
 
 /// Rows buffered per series before they are sent as one chunk.
 const ROWS_PER_CHUNK: usize = 4096;
@@ -22,41 +21,6 @@ const ROWS_PER_CHUNK: usize = 4096;
 const SPACETIME_ROWS: usize = 1000;
 /// Target width of the space-time image (px); each segment gets an equal share.
 const SPACETIME_WIDTH: usize = 500;
-
-/// What a series reads from a frame.
-#[derive(Debug, Clone, Copy)]
-enum Source {
-    Segment(usize, Quantity),
-    Node(usize, usize),
-    FrictionForce,
-    Base,
-    BlockX,
-    BlockV,
-}
-
-impl Source {
-    fn of(self, frame: &Frame) -> f64 {
-        match self {
-            Source::Segment(k, q) => q.of(&frame.segments[k]),
-            Source::Node(j, axis) => frame.surface_nodes[j][axis],
-            Source::FrictionForce => frame.friction_force,
-            Source::Base => frame.base_displacement,
-            Source::BlockX => frame.block.map_or(f64::NAN, |b| b[0]),
-            Source::BlockV => frame.block.map_or(f64::NAN, |b| b[1]),
-        }
-    }
-}
-
-/// Static description of the run and the recording options, known before it starts.
-#[derive(Debug, Clone)]
-pub struct RecordingPlan {
-    pub case: String,
-    pub t_end: f64,
-    pub dt: f64,
-    pub steps: u64,
-    pub slip_rate_threshold: f64,
-    pub spec: RecordSpec,
-}
 
 /// Writes a Rerun recording (file, viewer, or both).
 pub struct RerunSink {
@@ -68,7 +32,7 @@ pub struct RerunSink {
     times: Vec<f64>,
     values: Vec<Vec<f64>>,
     rows: u64,
-    last_recorded_step: Option<u64>,
+    decimator: Decimator,
     last_time: f64,
     /// Peak slip rate per (time row, segment) for the space-time image.
     spacetime: Vec<f32>,
@@ -86,6 +50,7 @@ impl RerunSink {
         };
         Self {
             rec: Some(rec),
+            decimator: Decimator::new(&plan),
             plan,
             layout: None,
             series: Vec::new(),
@@ -93,7 +58,6 @@ impl RerunSink {
             times: Vec::new(),
             values: Vec::new(),
             rows: 0,
-            last_recorded_step: None,
             last_time: 0.0,
             spacetime: Vec::new(),
             needs,
@@ -117,13 +81,6 @@ impl RerunSink {
             rec.send_columns(path.as_str(), [steps.clone(), times.clone()], column).map_err(rerun_error)?;
         }
         Ok(())
-    }
-
-    fn should_record(&self, frame: &Frame) -> bool {
-        let Some(last) = self.last_recorded_step else { return true };
-        frame.segments.iter().any(|s| s.slip_rate > self.plan.slip_rate_threshold)
-            || frame.step >= last + self.plan.spec.stick_every
-            || frame.time >= self.plan.t_end * (1.0 - 1e-12)
     }
 
     fn log_geometry(&mut self, frame: &Frame) -> Result<(), SinkError> {
@@ -305,7 +262,7 @@ impl RerunSink {
             )
             .map_err(rerun_error)?;
         }
-        if layout.kind == "block" {
+        if layout.kind == SceneKind::Block {
             for r in &catalog.ruptures {
                 rec.set_duration_secs(schema::SIM_TIME, r.onset);
                 rec.log(
@@ -319,7 +276,7 @@ impl RerunSink {
                         r.end,
                         r.max_slip,
                         r.friction_force_drop,
-                        layout.force_unit
+                        layout.kind.force_unit()
                     ))
                     .with_level(rerun::TextLogLevel::WARN),
                 )
@@ -336,105 +293,29 @@ impl Sink for RerunSink {
     }
 
     fn begin(&mut self, layout: &Layout) -> Result<(), SinkError> {
-        let spec = &self.plan.spec;
-        let segment_probes: Vec<usize> =
-            layout.segments.iter().enumerate().filter(|(_, s)| s.name.is_some()).map(|(k, _)| k).collect();
-        let node_probes: Vec<usize> =
-            layout.surface_nodes.iter().enumerate().filter(|(_, n)| n.name.is_some()).map(|(k, _)| k).collect();
-        let segments = spec.segments.resolve(layout.segments.len(), &segment_probes);
-        let nodes = spec.nodes.resolve(layout.surface_nodes.len(), &node_probes);
-        let spatial = spec.spatial && layout.kind != "point";
+        let (segments, nodes) = selection(&self.plan.spec, layout);
+        let spatial = self.plan.spec.spatial && layout.kind != SceneKind::Point;
         self.needs.surface_nodes = !nodes.is_empty();
         self.needs.mesh = spatial && layout.mesh.is_some();
-        let width = layout.segments.last().map_or(1.0, |s| s.right).max(f64::MIN_POSITIVE);
-        let position_colour = |x: f64| {
-            let [r, g, b] = sample(&POSITION, if layout.segments.len() > 1 { x / width } else { 0.5 });
-            rerun::Color::from_rgb(r, g, b)
-        };
+        let plan = series_plan(layout, &segments, &nodes, &self.plan.spec.quantities);
         let rec = self.rec.as_ref().expect("the stream lives until finish");
-        let mut series = Vec::new();
-        let mut styles: Vec<(String, String, rerun::Color)> = Vec::new();
-        for &k in &segments {
-            let seg = &layout.segments[k];
-            let label = match &seg.name {
-                Some(name) => format!("{name} (segment {k})"),
-                None if layout.segments.len() > 1 => format!("segment {k}"),
-                None => "contact".to_string(),
-            };
-            for &q in &spec.quantities {
-                let path = schema::segment_entity(k, q);
-                styles.push((
-                    path.clone(),
-                    format!("{label}: {}", q.label()),
-                    position_colour(0.5 * (seg.left + seg.right)),
-                ));
-                series.push((path, Source::Segment(k, q)));
-            }
+        for series in &plan {
+            let [r, g, b] = series.position.map_or([200, 200, 200], |x| sample(&POSITION, x));
+            rec.log_static(
+                series.path.as_str(),
+                &SeriesLines::new().with_names([series.label.as_str()]).with_colors([rerun::Color::from_rgb(r, g, b)]),
+            )
+            .map_err(rerun_error)?;
         }
-        for &j in &nodes {
-            let node = &layout.surface_nodes[j];
-            let label = node.name.clone().unwrap_or_else(|| format!("node {j}"));
-            for axis in 0..2 {
-                let path = schema::node_entity(j, axis);
-                let symbol = if axis == 0 { "u_x (m)" } else { "u_y (m)" };
-                styles.push((path.clone(), format!("{label}: {symbol}"), position_colour(node.x)));
-                series.push((path, Source::Node(j, axis)));
-            }
-        }
-        let grey = rerun::Color::from_rgb(200, 200, 200);
-        styles.push((schema::FRICTION_FORCE.into(), format!("friction force ({})", layout.force_unit), grey));
-        series.push((schema::FRICTION_FORCE.into(), Source::FrictionForce));
-        let base_label = if layout.kind == "spring_block" { "spring end u_x (m)" } else { "base u_x (m)" };
-        styles.push((schema::BASE_UX.into(), base_label.into(), grey));
-        series.push((schema::BASE_UX.into(), Source::Base));
-        if layout.kind == "spring_block" {
-            styles.push((schema::BLOCK_X.into(), "block x (m)".into(), position_colour(0.0)));
-            series.push((schema::BLOCK_X.into(), Source::BlockX));
-            styles.push((schema::BLOCK_V.into(), "block v (m/s)".into(), position_colour(1.0)));
-            series.push((schema::BLOCK_V.into(), Source::BlockV));
-        }
-        for (path, name, colour) in &styles {
-            rec.log_static(path.as_str(), &SeriesLines::new().with_names([name.as_str()]).with_colors([*colour]))
-                .map_err(rerun_error)?;
-        }
-        let info = RunInfo {
-            slipfront_version: env!("CARGO_PKG_VERSION").into(),
-            case: self.plan.case.clone(),
-            kind: layout.kind.into(),
-            t_end: self.plan.t_end,
-            dt: self.plan.dt,
-            steps: self.plan.steps,
-            segments: layout.segments.len(),
-            recorded_segments: segments.clone(),
-            segment_labels: segments
-                .iter()
-                .map(|&k| layout.segments[k].name.clone().unwrap_or_else(|| format!("segment {k}")))
-                .collect(),
-            recorded_nodes: nodes.clone(),
-            node_labels: nodes
-                .iter()
-                .map(|&j| layout.surface_nodes[j].name.clone().unwrap_or_else(|| format!("node {j}")))
-                .collect(),
-            probe_segments: segment_probes.clone(),
-            probe_nodes: node_probes.clone(),
-            quantities: spec.quantities.clone(),
-            series: series.iter().map(|(p, _)| p.clone()).collect(),
-            spatial,
-            magnification: spec.magnification,
-            slip_rate_threshold: self.plan.slip_rate_threshold,
-            stick_every: spec.stick_every,
-        };
+        let info = RunInfo::new(&self.plan, layout, &segments, &nodes, &plan, spatial);
         let text = toml::to_string(&info).map_err(|e| SinkError(format!("cannot describe the run: {e}")))?;
-        rec.log_static(
-            schema::RUN_INFO,
-            &rerun::TextDocument::new(text).with_media_type(rerun::MediaType::plain_text()),
-        )
-        .map_err(rerun_error)?;
-        default_blueprint(layout, &segments, &nodes, spatial, spec.magnification)
+        rec.log_static(schema::RUN_INFO, &rerun::TextDocument::new(text).with_media_type(rerun::MediaType::plain_text()))
+            .map_err(rerun_error)?;
+        default_blueprint(layout, &segments, &nodes, spatial, self.plan.spec.magnification)
             .send(rec, rerun::blueprint::BlueprintActivation { make_active: true, make_default: true })
             .map_err(rerun_error)?;
-        self.values = vec![Vec::with_capacity(ROWS_PER_CHUNK); series.len()];
-        self.series = series;
+        self.values = vec![Vec::with_capacity(ROWS_PER_CHUNK); plan.len()];
+        self.series = plan.into_iter().map(|s| (s.path, s.source)).collect();
         self.spacetime = vec![0.0; SPACETIME_ROWS * layout.segments.len()];
         self.plan.spec.spatial = spatial;
         self.layout = Some(layout.clone());
@@ -442,15 +323,7 @@ impl Sink for RerunSink {
     }
 
     fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
-        if self.plan.spec.spatial {
-            let segments = frame.segments.len();
-            let row = ((frame.time / self.plan.t_end * SPACETIME_ROWS as f64) as usize).min(SPACETIME_ROWS - 1);
-            for (k, s) in frame.segments.iter().enumerate() {
-                let cell = &mut self.spacetime[row * segments + k];
-                *cell = cell.max(s.slip_rate as f32);
-            }
-        }
-        if !self.should_record(frame) {
+        if !self.decimator.keep(frame) {
             return Ok(());
         }
         self.steps.push(frame.step as i64);
@@ -459,9 +332,15 @@ impl Sink for RerunSink {
             values.push(source.of(frame));
         }
         self.rows += 1;
-        self.last_recorded_step = Some(frame.step);
         self.last_time = frame.time;
         if self.plan.spec.spatial {
+            // Recorded steps only, so that a replayed log draws the same image.
+            let segments = frame.segments.len();
+            let row = ((frame.time / self.plan.t_end * SPACETIME_ROWS as f64) as usize).min(SPACETIME_ROWS - 1);
+            for (k, s) in frame.segments.iter().enumerate() {
+                let cell = &mut self.spacetime[row * segments + k];
+                *cell = cell.max(s.slip_rate as f32);
+            }
             self.log_geometry(frame)?;
         }
         if self.steps.len() >= ROWS_PER_CHUNK {

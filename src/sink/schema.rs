@@ -3,7 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::scene::SegmentSample;
+use crate::case::RecordSpec;
+use crate::scene::{Frame, Layout, SceneKind, SegmentSample};
 
 /// Application id of every recording.
 pub const APP_ID: &str = "slipfront";
@@ -122,6 +123,110 @@ pub fn node_entity(node: usize, axis: usize) -> String {
     format!("body/nodes/{node}/{}", if axis == 0 { "u_x" } else { "u_y" })
 }
 
+/// The run a recording (or MCAP log) describes, known before it starts.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RecordingPlan {
+    /// Case file stem.
+    pub case: String,
+    pub t_end: f64,
+    pub dt: f64,
+    /// Planned steps.
+    pub steps: u64,
+    pub slip_rate_threshold: f64,
+    pub spec: RecordSpec,
+}
+
+/// What a series reads from a frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Source {
+    Segment(usize, Quantity),
+    /// Contact-surface node and axis (0 = x, 1 = y).
+    Node(usize, usize),
+    FrictionForce,
+    Base,
+    BlockX,
+    BlockV,
+}
+
+impl Source {
+    /// The series' value in `frame`.
+    pub fn of(self, frame: &Frame) -> f64 {
+        match self {
+            Source::Segment(k, q) => q.of(&frame.segments[k]),
+            Source::Node(j, axis) => frame.surface_nodes[j][axis],
+            Source::FrictionForce => frame.friction_force,
+            Source::Base => frame.base_displacement,
+            Source::BlockX => frame.block.map_or(f64::NAN, |b| b[0]),
+            Source::BlockV => frame.block.map_or(f64::NAN, |b| b[1]),
+        }
+    }
+}
+
+/// One scalar time series of the schema.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SeriesSpec {
+    /// Entity path.
+    pub path: String,
+    pub source: Source,
+    /// Name shown in plots, with the unit.
+    pub label: String,
+    /// Position along the surface as a fraction of its width, for colouring; `None` for totals.
+    pub position: Option<f64>,
+}
+
+/// The segments and nodes that get time series under `spec`.
+pub fn selection(spec: &RecordSpec, layout: &Layout) -> (Vec<usize>, Vec<usize>) {
+    let named_segments: Vec<usize> =
+        layout.segments.iter().enumerate().filter(|(_, s)| s.name.is_some()).map(|(k, _)| k).collect();
+    let named_nodes: Vec<usize> =
+        layout.surface_nodes.iter().enumerate().filter(|(_, n)| n.name.is_some()).map(|(k, _)| k).collect();
+    (spec.segments.resolve(layout.segments.len(), &named_segments), spec.nodes.resolve(layout.surface_nodes.len(), &named_nodes))
+}
+
+/// Every series of a recording, in the order they are written.
+pub fn series_plan(layout: &Layout, segments: &[usize], nodes: &[usize], quantities: &[Quantity]) -> Vec<SeriesSpec> {
+    let width = layout.segments.last().map_or(1.0, |s| s.right).max(f64::MIN_POSITIVE);
+    let at = |x: f64| Some(if layout.segments.len() > 1 { x / width } else { 0.5 });
+    let mut plan = Vec::new();
+    for &k in segments {
+        let seg = &layout.segments[k];
+        let name = match &seg.name {
+            Some(name) => format!("{name} (segment {k})"),
+            None if layout.segments.len() > 1 => format!("segment {k}"),
+            None => "contact".to_string(),
+        };
+        for &q in quantities {
+            plan.push(SeriesSpec {
+                path: segment_entity(k, q),
+                source: Source::Segment(k, q),
+                label: format!("{name}: {}", q.label()),
+                position: at(0.5 * (seg.left + seg.right)),
+            });
+        }
+    }
+    for &j in nodes {
+        let node = &layout.surface_nodes[j];
+        let name = node.name.clone().unwrap_or_else(|| format!("node {j}"));
+        for (axis, symbol) in [(0, "u_x (m)"), (1, "u_y (m)")] {
+            plan.push(SeriesSpec {
+                path: node_entity(j, axis),
+                source: Source::Node(j, axis),
+                label: format!("{name}: {symbol}"),
+                position: at(node.x),
+            });
+        }
+    }
+    let total = |path: &str, source, label: String| SeriesSpec { path: path.into(), source, label, position: None };
+    plan.push(total(FRICTION_FORCE, Source::FrictionForce, format!("friction force ({})", layout.kind.force_unit())));
+    let spring = layout.kind == SceneKind::SpringBlock;
+    plan.push(total(BASE_UX, Source::Base, if spring { "spring end u_x (m)" } else { "base u_x (m)" }.into()));
+    if spring {
+        plan.push(SeriesSpec { position: Some(0.0), ..total(BLOCK_X, Source::BlockX, "block x (m)".into()) });
+        plan.push(SeriesSpec { position: Some(1.0), ..total(BLOCK_V, Source::BlockV, "block v (m/s)".into()) });
+    }
+    plan
+}
+
 /// What a recording holds, written into it as TOML at [`RUN_INFO`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunInfo {
@@ -129,7 +234,7 @@ pub struct RunInfo {
     /// Case file stem.
     pub case: String,
     /// Scene kind.
-    pub kind: String,
+    pub kind: crate::scene::SceneKind,
     pub t_end: f64,
     pub dt: f64,
     /// Planned steps.
@@ -154,6 +259,75 @@ pub struct RunInfo {
     pub slip_rate_threshold: f64,
     /// In stick, every `stick_every`-th step is recorded; every step while a segment slips.
     pub stick_every: u64,
+}
+
+impl RunInfo {
+    /// The description of a run over `layout` recording `series`.
+    pub fn new(plan: &RecordingPlan, layout: &Layout, segments: &[usize], nodes: &[usize], series: &[SeriesSpec], spatial: bool) -> Self {
+        let (named_segments, named_nodes): (Vec<usize>, Vec<usize>) = (
+            layout.segments.iter().enumerate().filter(|(_, s)| s.name.is_some()).map(|(k, _)| k).collect(),
+            layout.surface_nodes.iter().enumerate().filter(|(_, n)| n.name.is_some()).map(|(k, _)| k).collect(),
+        );
+        Self {
+            slipfront_version: env!("CARGO_PKG_VERSION").into(),
+            case: plan.case.clone(),
+            kind: layout.kind,
+            t_end: plan.t_end,
+            dt: plan.dt,
+            steps: plan.steps,
+            segments: layout.segments.len(),
+            recorded_segments: segments.to_vec(),
+            segment_labels: segments
+                .iter()
+                .map(|&k| layout.segments[k].name.clone().unwrap_or_else(|| format!("segment {k}")))
+                .collect(),
+            recorded_nodes: nodes.to_vec(),
+            node_labels: nodes
+                .iter()
+                .map(|&j| layout.surface_nodes[j].name.clone().unwrap_or_else(|| format!("node {j}")))
+                .collect(),
+            probe_segments: named_segments,
+            probe_nodes: named_nodes,
+            quantities: plan.spec.quantities.clone(),
+            series: series.iter().map(|s| s.path.clone()).collect(),
+            spatial,
+            magnification: plan.spec.magnification,
+            slip_rate_threshold: plan.slip_rate_threshold,
+            stick_every: plan.spec.stick_every,
+        }
+    }
+}
+
+/// Which steps a recording keeps: every step while any segment slips faster than the event
+/// threshold, every `stick_every`-th otherwise, and always the first and the last.
+#[derive(Debug, Clone)]
+pub struct Decimator {
+    threshold: f64,
+    stick_every: u64,
+    t_end: f64,
+    last: Option<u64>,
+}
+
+impl Decimator {
+    pub fn new(plan: &RecordingPlan) -> Self {
+        Self { threshold: plan.slip_rate_threshold, stick_every: plan.spec.stick_every, t_end: plan.t_end, last: None }
+    }
+
+    /// Whether `frame` is recorded (and, if so, remembers it).
+    pub fn keep(&mut self, frame: &Frame) -> bool {
+        let keep = match self.last {
+            None => true,
+            Some(last) => {
+                frame.segments.iter().any(|s| s.slip_rate > self.threshold)
+                    || frame.step >= last + self.stick_every
+                    || frame.time >= self.t_end * (1.0 - 1e-12)
+            }
+        };
+        if keep {
+            self.last = Some(frame.step);
+        }
+        keep
+    }
 }
 
 /// How the run ended, written into the recording at [`RUN_ENDING`].
