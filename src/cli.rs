@@ -10,10 +10,13 @@ use clap::{Args, Parser, Subcommand};
 use crate::case;
 use crate::figures;
 use crate::inspect::{self, check::Expectations, check::check};
+use crate::mcap_log;
+use crate::replay;
 use crate::run::{LoopOptions, Outcome, run};
 use crate::scene;
 use crate::sink::Sink;
 use crate::sink::catalog::CatalogSink;
+use crate::sink::mcap::McapSink;
 use crate::sink::recording::{RerunSink, Viewer, open_stream};
 use crate::sink::schema::RecordingPlan;
 
@@ -49,6 +52,47 @@ pub enum Command {
     /// Draw PNG plots like the paper's Figures 8 (displacement at the probe nodes) and 9
     /// (traction and 1/R* at the probe segments) from a recording.
     Figures(FiguresArgs),
+    /// Re-emit a slipfront MCAP log to Rerun with the live schema and blueprint.
+    ///
+    /// Writes <FILE-stem>.replay.rrd beside the log unless --rrd, --spawn or --connect says
+    /// otherwise. Exit codes: 0 replayed, 1 the log is damaged (what could be recovered was
+    /// replayed), 2 unreadable or invalid arguments.
+    Replay(ReplayArgs),
+}
+
+/// Where a live copy of the recording goes.
+#[derive(Debug, Args)]
+pub struct ViewerArgs {
+    /// Stream to a new Rerun viewer (the `rerun` executable on PATH).
+    #[arg(long, conflicts_with = "connect")]
+    pub spawn: bool,
+    /// Stream to a running Rerun viewer, e.g. rerun+http://127.0.0.1:9876/proxy.
+    #[arg(long, value_name = "URL")]
+    pub connect: Option<String>,
+}
+
+impl ViewerArgs {
+    pub fn viewer(&self) -> Viewer {
+        match (&self.connect, self.spawn) {
+            (Some(url), _) => Viewer::Connect(url.clone()),
+            (None, true) => Viewer::Spawn,
+            (None, false) => Viewer::None,
+        }
+    }
+}
+
+#[derive(Debug, Args)]
+pub struct ReplayArgs {
+    /// The MCAP log (written by `slipfront run --mcap`).
+    pub log: PathBuf,
+    /// Write the replay to this recording.
+    #[arg(long, value_name = "PATH")]
+    pub rrd: Option<PathBuf>,
+    #[command(flatten)]
+    pub viewer: ViewerArgs,
+    /// Pace the replay: simulated seconds per wall-clock second (default: as fast as possible).
+    #[arg(long, value_name = "FACTOR")]
+    pub speed: Option<f64>,
 }
 
 #[derive(Debug, Args)]
@@ -62,7 +106,7 @@ pub struct FiguresArgs {
 
 #[derive(Debug, Args)]
 pub struct CheckArgs {
-    /// The recording (.rrd).
+    /// The recording (.rrd) or MCAP log (.mcap).
     pub recording: PathBuf,
     /// Expectations (TOML): `[events] slip_events = [lo, hi]`, `ruptures = [lo, hi]`, and
     /// `[[at]] entity = "...", time = t, min = a, max = b` (the last row at or before t).
@@ -91,12 +135,12 @@ pub struct RunArgs {
     /// Write no .rrd recording.
     #[arg(long)]
     pub no_rrd: bool,
-    /// Also stream to a new Rerun viewer (the `rerun` executable on PATH).
-    #[arg(long, conflicts_with = "connect")]
-    pub spawn: bool,
-    /// Also stream to a running Rerun viewer, e.g. rerun+http://127.0.0.1:9876/proxy.
-    #[arg(long, value_name = "URL")]
-    pub connect: Option<String>,
+    #[command(flatten)]
+    pub viewer: ViewerArgs,
+    /// Also write the recorded steps to an MCAP log (protobuf; Foxglove, `mcap` readers,
+    /// `slipfront replay`).
+    #[arg(long, value_name = "PATH")]
+    pub mcap: Option<PathBuf>,
     /// Print nothing but errors: no progress bar, no summary.
     #[arg(long, short)]
     pub quiet: bool,
@@ -108,6 +152,7 @@ pub fn main_with(cli: Cli) -> ExitCode {
         Command::Run(args) => run_command(args),
         Command::Check(args) => check_command(args),
         Command::Figures(args) => figures_command(args),
+        Command::Replay(args) => replay_command(args),
     }
 }
 
@@ -139,26 +184,28 @@ fn run_command(args: RunArgs) -> ExitCode {
     } else {
         Some(args.rrd.clone().unwrap_or_else(|| args.out_dir.join(format!("{stem}.rrd"))))
     };
-    let viewer = match (&args.connect, args.spawn) {
-        (Some(url), _) => Viewer::Connect(url.clone()),
-        (None, true) => Viewer::Spawn,
-        (None, false) => Viewer::None,
-    };
+    let viewer = args.viewer.viewer();
     let stream = match open_stream(rrd_path.as_deref(), &viewer, &stem) {
         Ok(stream) => stream,
         Err(e) => return fail(EXIT_INVALID, e),
     };
+    let plan = RecordingPlan {
+        case: stem.clone(),
+        t_end: case.time.t_end,
+        dt: case.time.dt,
+        steps: case.time.steps(),
+        slip_rate_threshold: case.slip_rate_threshold(),
+        spec: case.record.clone(),
+    };
     let mut sinks: Vec<Box<dyn Sink>> =
         vec![Box::new(CatalogSink::new(events_path.clone(), Some(ruptures_path.clone())))];
+    if let Some(path) = &args.mcap {
+        match McapSink::create(path, plan.clone()) {
+            Ok(sink) => sinks.push(Box::new(sink)),
+            Err(e) => return fail(EXIT_INVALID, e),
+        }
+    }
     if let Some(stream) = stream {
-        let plan = RecordingPlan {
-            case: stem.clone(),
-            t_end: case.time.t_end,
-            dt: case.time.dt,
-            steps: case.time.steps(),
-            slip_rate_threshold: case.slip_rate_threshold(),
-            spec: case.record.clone(),
-        };
         sinks.push(Box::new(RerunSink::new(stream, plan)));
     }
     let interrupt = Arc::new(AtomicBool::new(false));
@@ -178,7 +225,7 @@ fn run_command(args: RunArgs) -> ExitCode {
             merge_within: case.events.merge_within,
         },
     );
-    let mut outputs: Vec<String> = rrd_path.iter().map(|p| p.display().to_string()).collect();
+    let mut outputs: Vec<String> = rrd_path.iter().chain(&args.mcap).map(|p| p.display().to_string()).collect();
     outputs.push(events_path.display().to_string());
     if scene.layout().kind == scene::SceneKind::Block {
         outputs.push(ruptures_path.display().to_string());
@@ -218,13 +265,87 @@ fn check_command(args: CheckArgs) -> ExitCode {
         },
         None => Expectations::default(),
     };
-    let recording = match inspect::rrd::read(&args.recording) {
-        Ok(r) => r,
-        Err(e) => return fail(EXIT_INVALID, e),
+    let report = if is_mcap(&args.recording) {
+        // An MCAP log is judged by the recording it replays into, plus its own damage.
+        let log = match mcap_log::reader::read(&args.recording) {
+            Ok(log) => log,
+            Err(e) => return fail(EXIT_INVALID, e),
+        };
+        let recording = match replay::replayed_recording(&log) {
+            Ok(r) => r,
+            Err(e) => return fail(EXIT_INVALID, e),
+        };
+        let mut report = check(&recording, &expect);
+        report.summary.insert(0, format!("MCAP log: {} messages, {} recorded steps", log.messages, log.frames.len()));
+        if let Some(problem) = &log.problem {
+            report.problems.insert(0, format!("the log is damaged: {problem}"));
+        }
+        if !log.skipped.is_empty() {
+            report.summary.push(format!("skipped channels of other producers: {:?}", log.skipped));
+        }
+        report
+    } else {
+        match inspect::rrd::read(&args.recording) {
+            Ok(recording) => check(&recording, &expect),
+            Err(e) => return fail(EXIT_INVALID, e),
+        }
     };
-    let report = check(&recording, &expect);
     print!("{}", report.render());
     if report.passed() { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED) }
+}
+
+/// Whether `path` is an MCAP log: named `.mcap`, or starting with the MCAP magic bytes.
+fn is_mcap(path: &Path) -> bool {
+    use std::io::Read;
+    let mut magic = [0u8; 8];
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("mcap"))
+        || (std::fs::File::open(path).and_then(|mut f| f.read_exact(&mut magic)).is_ok() && magic == *mcap::MAGIC)
+}
+
+fn replay_command(args: ReplayArgs) -> ExitCode {
+    if let Some(speed) = args.speed
+        && !(speed.is_finite() && speed > 0.0)
+    {
+        return fail(EXIT_INVALID, format!("--speed {speed}: must be a finite number greater than 0"));
+    }
+    let log = match mcap_log::reader::read(&args.log) {
+        Ok(log) => log,
+        Err(e) => return fail(EXIT_INVALID, e),
+    };
+    for (topic, count) in &log.skipped {
+        eprintln!("slipfront: skipping {count} messages on {topic}: not a slipfront channel");
+    }
+    let viewer = args.viewer.viewer();
+    let rrd = args.rrd.clone().or_else(|| {
+        (viewer == Viewer::None).then(|| {
+            let stem = args.log.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "log".into());
+            args.log.with_file_name(format!("{stem}.replay.rrd"))
+        })
+    });
+    let stream = match open_stream(rrd.as_deref(), &viewer, &log.header.plan.case) {
+        Ok(Some(stream)) => stream,
+        Ok(None) => return fail(EXIT_INVALID, "nothing to replay into"),
+        Err(e) => return fail(EXIT_INVALID, e),
+    };
+    if let Err(e) = replay::replay(&log, stream, args.speed) {
+        return fail(EXIT_FAILED, e);
+    }
+    let last = log.frames.last().map_or(0.0, |f| f.time);
+    let into = rrd.map_or_else(|| "the viewer".to_string(), |p| p.display().to_string());
+    match &log.problem {
+        Some(problem) => fail(
+            EXIT_FAILED,
+            format!(
+                "{}: {problem}; replayed {} recorded steps up to t = {last} s into {into}",
+                args.log.display(),
+                log.frames.len()
+            ),
+        ),
+        None => {
+            println!("slipfront: replayed {} recorded steps up to t = {last} s into {into}", log.frames.len());
+            ExitCode::SUCCESS
+        }
+    }
 }
 
 fn figures_command(args: FiguresArgs) -> ExitCode {

@@ -15,8 +15,8 @@ use std::sync::Once;
 use plotters::prelude::*;
 
 use crate::inspect::{Recording, Series};
-use crate::sink::colormap::{POSITION, SLIP_RATE, sample};
 use crate::scene::SceneKind;
+use crate::sink::colormap::{POSITION, SLIP_RATE, sample};
 use crate::sink::schema::{self, Quantity, RunInfo};
 
 const WIDTH: u32 = 1400;

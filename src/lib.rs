@@ -8,6 +8,8 @@ pub mod fem;
 pub mod figures;
 pub mod friction;
 pub mod inspect;
+pub mod mcap_log;
+pub mod replay;
 pub mod run;
 pub mod scene;
 pub mod sink;

@@ -17,6 +17,11 @@ pub fn read(path: &Path) -> Result<Recording, ReadError> {
     let file = File::open(path).map_err(|e| ReadError(format!("cannot open {}: {e}", path.display())))?;
     let decoder = DecoderApp::decode_eager(BufReader::new(file))
         .map_err(|e| ReadError(format!("{} is not a Rerun recording: {e}", path.display())))?;
+    Ok(from_messages(decoder.map(|m| m.map_err(|e| e.to_string()))))
+}
+
+/// Builds a [`Recording`] from log messages (a file's, or an in-memory stream's).
+pub fn from_messages(messages: impl Iterator<Item = Result<LogMsg, String>>) -> Recording {
     let scalars: ComponentIdentifier = rerun::Scalars::descriptor_scalars().component;
     let text: ComponentIdentifier = rerun::TextDocument::descriptor_text().component;
     let log_text: ComponentIdentifier = rerun::TextLog::descriptor_text().component;
@@ -31,7 +36,7 @@ pub fn read(path: &Path) -> Result<Recording, ReadError> {
 
     let mut recording = Recording::default();
     let mut views: std::collections::BTreeMap<String, View> = Default::default();
-    for message in decoder {
+    for message in messages {
         let message = match message {
             Ok(m) => m,
             Err(e) => {
@@ -106,5 +111,5 @@ pub fn read(path: &Path) -> Result<Recording, ReadError> {
     for series in recording.series.values_mut() {
         series.sort_by_step();
     }
-    Ok(recording)
+    recording
 }

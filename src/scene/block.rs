@@ -1,8 +1,9 @@
 //! `kind = "block"`: the paper's §3 analysis, a plane-strain elastic block whose bottom is the
 //! frictional contact against a moving rigid base.
 
-use super::{SceneKind, 
-    Frame, Layout, Needs, NodeInfo, RunError, Scene, SegmentInfo, advance_dynamics, segment_sample, step_error,
+use super::{
+    Frame, Layout, Needs, NodeInfo, RunError, Scene, SceneKind, SegmentInfo, advance_dynamics, segment_sample,
+    step_error,
 };
 use crate::case::{BlockSpec, Case};
 use crate::dynamics::{Dynamics, WilsonSettings};

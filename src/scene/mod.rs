@@ -53,6 +53,11 @@ impl SceneKind {
         }
     }
 
+    /// Whether frames of this scene carry a block displacement and velocity.
+    pub fn has_block(self) -> bool {
+        self == SceneKind::SpringBlock
+    }
+
     /// Unit of the total friction force: per unit thickness for a block, per unit area else.
     pub fn force_unit(self) -> &'static str {
         match self {

@@ -1,6 +1,6 @@
 //! `kind = "point"`: the friction law alone, driven by a prescribed relative sliding velocity.
 
-use super::{SceneKind, Frame, Layout, Needs, RunError, Scene, SegmentInfo, friction_error, segment_sample};
+use super::{Frame, Layout, Needs, RunError, Scene, SceneKind, SegmentInfo, friction_error, segment_sample};
 use crate::case::PointSpec;
 use crate::friction::{ContactState, FrictionParams, update};
 

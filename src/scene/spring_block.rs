@@ -1,7 +1,9 @@
 //! `kind = "spring_block"`: a rigid block on the frictional contact, pulled through a spring
 //! whose far end moves at a constant velocity (Ozaki & Hashiguchi 2010).
 
-use super::{SceneKind, Frame, Layout, Needs, RunError, Scene, SegmentInfo, advance_dynamics, segment_sample, step_error};
+use super::{
+    Frame, Layout, Needs, RunError, Scene, SceneKind, SegmentInfo, advance_dynamics, segment_sample, step_error,
+};
 use crate::case::{Case, SpringBlockSpec};
 use crate::dynamics::sparse::SymmetricMatrix;
 use crate::dynamics::{ContactBoundary, ContactPoint, Dynamics, LinearBody, WilsonSettings};

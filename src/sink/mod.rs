@@ -6,6 +6,8 @@ pub mod blueprint;
 pub mod catalog;
 pub mod colormap;
 pub mod events;
+pub mod geometry;
+pub mod mcap;
 pub mod observations;
 pub mod recording;
 pub mod schema;

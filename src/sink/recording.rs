@@ -11,16 +11,15 @@ use rerun::{RecordingStream, Scalars, SeriesLines, TimeColumn};
 use super::blueprint::default_blueprint;
 use super::colormap::{POSITION, SLIP_RATE, sample};
 use super::events::Catalog;
+use super::geometry::{GeometryBuffer, SPACETIME_ROWS, spacetime_width};
 use super::schema::{self, Decimator, RecordingPlan, RunEnding, RunInfo, Source, selection, series_plan};
 use super::{Ending, Sink, SinkError};
 use crate::scene::{Frame, Layout, Needs, SceneKind};
 
 /// Rows buffered per series before they are sent as one chunk.
 const ROWS_PER_CHUNK: usize = 4096;
-/// Rows of the space-time image, spread over `[0, t_end]`.
-const SPACETIME_ROWS: usize = 1000;
-/// Target width of the space-time image (px); each segment gets an equal share.
-const SPACETIME_WIDTH: usize = 500;
+/// Geometry points buffered before every buffer is sent (large meshes flush sooner).
+const GEOMETRY_POINTS_PER_CHUNK: usize = 2_000_000;
 
 /// Writes a Rerun recording (file, viewer, or both).
 pub struct RerunSink {
@@ -32,6 +31,7 @@ pub struct RerunSink {
     times: Vec<f64>,
     values: Vec<Vec<f64>>,
     rows: u64,
+    geometry: GeometryBuffer,
     decimator: Decimator,
     last_time: f64,
     /// Peak slip rate per (time row, segment) for the space-time image.
@@ -58,6 +58,7 @@ impl RerunSink {
             times: Vec::new(),
             values: Vec::new(),
             rows: 0,
+            geometry: GeometryBuffer::default(),
             last_time: 0.0,
             spacetime: Vec::new(),
             needs,
@@ -69,6 +70,7 @@ impl RerunSink {
     }
 
     /// Sends the buffered rows of every series as one chunk each.
+    /// Sends the buffered rows of every series and geometry entity, one chunk each.
     fn flush_columns(&mut self) -> Result<(), SinkError> {
         if self.steps.is_empty() {
             return Ok(());
@@ -80,132 +82,18 @@ impl RerunSink {
             let column = Scalars::new(std::mem::take(values)).columns_of_unit_batches().map_err(rerun_error)?;
             rec.send_columns(path.as_str(), [steps.clone(), times.clone()], column).map_err(rerun_error)?;
         }
-        Ok(())
-    }
-
-    fn log_geometry(&mut self, frame: &Frame) -> Result<(), SinkError> {
-        let layout = self.layout.as_ref().expect("begin() ran");
-        let rec = self.rec();
-        rec.set_time_sequence(schema::STEP, frame.step as i64);
-        rec.set_duration_secs(schema::SIM_TIME, frame.time);
-        let threshold = self.plan.slip_rate_threshold;
-        let state_colour = |rate: f64| -> rerun::Color {
-            if rate <= threshold {
-                rerun::Color::from_rgb(70, 130, 200)
-            } else {
-                let t = ((rate / threshold).log10() / 2.0).clamp(0.0, 1.0);
-                let [r, g, b] = sample(&SLIP_RATE, 0.55 + 0.45 * t);
-                rerun::Color::from_rgb(r, g, b)
-            }
-        };
-        let mag = self.plan.spec.magnification;
-        if let Some(mesh) = layout.mesh {
-            let (dx, dy) = (mesh.dx(), mesh.dy());
-            let at = |i: usize, j: usize| -> [f32; 2] {
-                let [ux, uy] = frame.mesh[mesh.node(i, j)];
-                [(i as f64 * dx + mag * ux) as f32, -(j as f64 * dy + mag * uy) as f32]
-            };
-            let mut lines: Vec<Vec<[f32; 2]>> =
-                (0..=mesh.ny).map(|j| (0..=mesh.nx).map(|i| at(i, j)).collect()).collect();
-            lines.extend((0..=mesh.nx).map(|i| (0..=mesh.ny).map(|j| at(i, j)).collect()));
-            rec.log(
-                schema::SPATIAL_MESH,
-                &rerun::LineStrips2D::new(lines)
-                    .with_colors([rerun::Color::from_rgb(150, 150, 150)])
-                    .with_radii([rerun::Radius::new_ui_points(0.75)]),
-            )
-            .map_err(rerun_error)?;
-            let segments: Vec<[[f32; 2]; 2]> = (0..mesh.nx).map(|k| [at(k, 0), at(k + 1, 0)]).collect();
-            let colours: Vec<rerun::Color> = frame.segments.iter().map(|s| state_colour(s.slip_rate)).collect();
-            rec.log(
-                schema::SPATIAL_CONTACT,
-                &rerun::LineStrips2D::new(segments)
-                    .with_colors(colours)
-                    .with_radii([rerun::Radius::new_ui_points(4.0)])
-                    .with_draw_order(10.0),
-            )
-            .map_err(rerun_error)?;
-            // The base: a line below the block with ticks that move with it.
-            let width = mesh.width;
-            let y = (0.12 * mesh.height.min(width)) as f32;
-            let shift = (mag * frame.base_displacement).rem_euclid(dx);
-            let mut base: Vec<Vec<[f32; 2]>> = vec![vec![[0.0, y], [width as f32, y]]];
-            base.extend((0..mesh.nx).map(|k| {
-                let x = (k as f64 * dx + shift) as f32;
-                vec![[x, y], [x, 2.0 * y]]
-            }));
-            rec.log(
-                schema::SPATIAL_BASE,
-                &rerun::LineStrips2D::new(base)
-                    .with_colors([rerun::Color::from_rgb(90, 90, 90)])
-                    .with_radii([rerun::Radius::new_ui_points(1.5)]),
-            )
-            .map_err(rerun_error)?;
-        } else if let Some([x, _]) = frame.block {
-            // Spring-block: the block, its contact patch, the spring to the moving far end.
-            let left = (mag * x) as f32;
-            let block = vec![[left, 0.0], [left + 1.0, 0.0], [left + 1.0, -0.6], [left, -0.6], [left, 0.0]];
-            rec.log(
-                schema::SPATIAL_MESH,
-                &rerun::LineStrips2D::new([block]).with_colors([rerun::Color::from_rgb(150, 150, 150)]),
-            )
-            .map_err(rerun_error)?;
-            rec.log(
-                schema::SPATIAL_CONTACT,
-                &rerun::LineStrips2D::new([[[left, 0.0], [left + 1.0, 0.0]]])
-                    .with_colors([state_colour(frame.segments[0].slip_rate)])
-                    .with_radii([rerun::Radius::new_ui_points(4.0)])
-                    .with_draw_order(10.0),
-            )
-            .map_err(rerun_error)?;
-            let far = 2.5 + (mag * frame.base_displacement) as f32;
-            let start = left + 1.0;
-            let coils = 8;
-            let spring: Vec<[f32; 2]> = (0..=2 * coils)
-                .map(|i| {
-                    let s = i as f32 / (2 * coils) as f32;
-                    let wiggle = if i == 0 || i == 2 * coils {
-                        0.0
-                    } else if i % 2 == 0 {
-                        0.1
-                    } else {
-                        -0.1
-                    };
-                    [start + s * (far - start), -0.3 + wiggle]
-                })
-                .collect();
-            rec.log(schema::SPATIAL_SPRING, &rerun::LineStrips2D::new([spring])).map_err(rerun_error)?;
-            rec.log(
-                schema::SPATIAL_BASE,
-                &rerun::LineStrips2D::new([[[-0.5_f32, 0.05], [far + 0.5, 0.05]]])
-                    .with_colors([rerun::Color::from_rgb(90, 90, 90)]),
-            )
-            .map_err(rerun_error)?;
+        for (entity, columns) in self.geometry.take().map_err(rerun_error)? {
+            rec.send_columns(entity, [steps.clone(), times.clone()], columns).map_err(rerun_error)?;
         }
-        // The space-time cursor.
-        let width = self.spacetime_width() as f32;
-        let row = (frame.time / self.plan.t_end * SPACETIME_ROWS as f64) as f32;
-        rec.log(
-            schema::SPACETIME_NOW,
-            &rerun::LineStrips2D::new([[[0.0, row], [width, row]]])
-                .with_colors([rerun::Color::from_rgb(255, 255, 255)])
-                .with_radii([rerun::Radius::new_ui_points(1.0)]),
-        )
-        .map_err(rerun_error)?;
         Ok(())
-    }
-
-    fn spacetime_width(&self) -> usize {
-        let segments = self.layout.as_ref().map_or(1, |l| l.segments.len());
-        segments * (SPACETIME_WIDTH / segments).max(1)
     }
 
     /// The space-time image: rows are time bins over `[0, t_end]`, columns segments, colour
     /// the bin's peak slip rate on a log scale from a hundredth of the threshold to the peak.
     fn log_spacetime(&self) -> Result<(), SinkError> {
         let segments = self.layout.as_ref().map_or(1, |l| l.segments.len());
-        let px = (SPACETIME_WIDTH / segments).max(1);
-        let width = segments * px;
+        let width = spacetime_width(segments);
+        let px = width / segments;
         let floor = self.plan.slip_rate_threshold / 100.0;
         let peak = self.spacetime.iter().fold(0.0_f32, |m, v| m.max(*v)) as f64;
         let top = peak.max(self.plan.slip_rate_threshold * 10.0);
@@ -309,8 +197,11 @@ impl Sink for RerunSink {
         }
         let info = RunInfo::new(&self.plan, layout, &segments, &nodes, &plan, spatial);
         let text = toml::to_string(&info).map_err(|e| SinkError(format!("cannot describe the run: {e}")))?;
-        rec.log_static(schema::RUN_INFO, &rerun::TextDocument::new(text).with_media_type(rerun::MediaType::plain_text()))
-            .map_err(rerun_error)?;
+        rec.log_static(
+            schema::RUN_INFO,
+            &rerun::TextDocument::new(text).with_media_type(rerun::MediaType::plain_text()),
+        )
+        .map_err(rerun_error)?;
         default_blueprint(layout, &segments, &nodes, spatial, self.plan.spec.magnification)
             .send(rec, rerun::blueprint::BlueprintActivation { make_active: true, make_default: true })
             .map_err(rerun_error)?;
@@ -341,9 +232,10 @@ impl Sink for RerunSink {
                 let cell = &mut self.spacetime[row * segments + k];
                 *cell = cell.max(s.slip_rate as f32);
             }
-            self.log_geometry(frame)?;
+            let layout = self.layout.as_ref().expect("begin() ran");
+            self.geometry.push(frame, layout, &self.plan);
         }
-        if self.steps.len() >= ROWS_PER_CHUNK {
+        if self.steps.len() >= ROWS_PER_CHUNK || self.geometry.points() >= GEOMETRY_POINTS_PER_CHUNK {
             self.flush_columns()?;
         }
         Ok(())
@@ -359,18 +251,7 @@ impl Sink for RerunSink {
                 result = result.and(self.log_spacetime());
             }
             result = result.and(self.log_catalog(catalog));
-            let summary = RunEnding {
-                ending: match ending {
-                    Ending::Completed => "completed",
-                    Ending::Failed => "failed",
-                    Ending::Interrupted => "interrupted",
-                }
-                .into(),
-                last_time: self.last_time,
-                rows: self.rows,
-                slip_events: catalog.events.len(),
-                ruptures: catalog.ruptures.len(),
-            };
+            let summary = RunEnding::new(ending, self.last_time, self.rows, catalog);
             let text = toml::to_string(&summary).map_err(|e| SinkError(format!("cannot describe the ending: {e}")))?;
             result = result.and(
                 self.rec()

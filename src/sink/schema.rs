@@ -180,7 +180,10 @@ pub fn selection(spec: &RecordSpec, layout: &Layout) -> (Vec<usize>, Vec<usize>)
         layout.segments.iter().enumerate().filter(|(_, s)| s.name.is_some()).map(|(k, _)| k).collect();
     let named_nodes: Vec<usize> =
         layout.surface_nodes.iter().enumerate().filter(|(_, n)| n.name.is_some()).map(|(k, _)| k).collect();
-    (spec.segments.resolve(layout.segments.len(), &named_segments), spec.nodes.resolve(layout.surface_nodes.len(), &named_nodes))
+    (
+        spec.segments.resolve(layout.segments.len(), &named_segments),
+        spec.nodes.resolve(layout.surface_nodes.len(), &named_nodes),
+    )
 }
 
 /// Every series of a recording, in the order they are written.
@@ -263,7 +266,14 @@ pub struct RunInfo {
 
 impl RunInfo {
     /// The description of a run over `layout` recording `series`.
-    pub fn new(plan: &RecordingPlan, layout: &Layout, segments: &[usize], nodes: &[usize], series: &[SeriesSpec], spatial: bool) -> Self {
+    pub fn new(
+        plan: &RecordingPlan,
+        layout: &Layout,
+        segments: &[usize],
+        nodes: &[usize],
+        series: &[SeriesSpec],
+        spatial: bool,
+    ) -> Self {
         let (named_segments, named_nodes): (Vec<usize>, Vec<usize>) = (
             layout.segments.iter().enumerate().filter(|(_, s)| s.name.is_some()).map(|(k, _)| k).collect(),
             layout.surface_nodes.iter().enumerate().filter(|(_, n)| n.name.is_some()).map(|(k, _)| k).collect(),
@@ -341,4 +351,16 @@ pub struct RunEnding {
     pub rows: u64,
     pub slip_events: usize,
     pub ruptures: usize,
+}
+
+impl RunEnding {
+    pub fn new(ending: crate::sink::Ending, last_time: f64, rows: u64, catalog: &crate::sink::events::Catalog) -> Self {
+        Self {
+            ending: ending.name().into(),
+            last_time,
+            rows,
+            slip_events: catalog.events.len(),
+            ruptures: catalog.ruptures.len(),
+        }
+    }
 }

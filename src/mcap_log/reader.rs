@@ -1,0 +1,221 @@
+//! Reads a slipfront MCAP log back into frames and a catalog.
+//!
+//! Damaged files yield what came before the damage: messages are read in file order and the
+//! first error ends the reading, with [`Log::problem`] saying where and why. Channels of other
+//! producers are counted in [`Log::skipped`] and otherwise ignored.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use prost::Message as _;
+
+use super::{LogHeader, proto};
+use crate::inspect::ReadError;
+use crate::scene::{Frame, SegmentSample};
+use crate::sink::events::Catalog;
+use crate::sink::schema::RunEnding;
+
+/// A log read back.
+#[derive(Debug, Clone)]
+pub struct Log {
+    pub header: LogHeader,
+    /// Complete frames, by step.
+    pub frames: Vec<Frame>,
+    pub catalog: Catalog,
+    /// How the run ended, if the log got that far.
+    pub ending: Option<RunEnding>,
+    /// Messages decoded.
+    pub messages: usize,
+    /// Why reading stopped early or what was dropped, if anything.
+    pub problem: Option<String>,
+    /// Messages of channels that are not slipfront's, by topic.
+    pub skipped: BTreeMap<String, usize>,
+}
+
+/// The parts of a frame as they arrive, one message per topic.
+#[derive(Default)]
+struct Parts {
+    segments: Option<proto::SegmentStates>,
+    nodes: Option<proto::NodeDisplacements>,
+    mesh: Option<proto::MeshDisplacements>,
+    totals: Option<proto::Totals>,
+}
+
+/// Reads `path`. Errors only when nothing usable is there (not MCAP, no run header).
+pub fn read(path: &Path) -> Result<Log, ReadError> {
+    let bytes = std::fs::read(path).map_err(|e| ReadError(format!("cannot open {}: {e}", path.display())))?;
+    if bytes.is_empty() {
+        return Err(ReadError(format!("{} is empty: no MCAP log to read", path.display())));
+    }
+    // The MCAP parser reads untrusted bytes; should it ever panic on them, say so rather than
+    // abort.
+    std::panic::catch_unwind(|| decode(&bytes, path)).unwrap_or_else(|_| {
+        Err(ReadError(format!("{}: the MCAP reader failed on damaged data; nothing was recovered", path.display())))
+    })
+}
+
+fn decode(bytes: &[u8], path: &Path) -> Result<Log, ReadError> {
+    let stream = mcap::MessageStream::new(bytes)
+        .map_err(|e| ReadError(format!("{} is not an MCAP file: {e}", path.display())))?;
+    let mut header: Option<LogHeader> = None;
+    let mut parts: BTreeMap<u32, Parts> = BTreeMap::new();
+    let mut catalog = Catalog::default();
+    let mut ending = None;
+    let mut messages = 0usize;
+    let mut problem = None;
+    let mut skipped: BTreeMap<String, usize> = BTreeMap::new();
+    for message in stream {
+        let message = match message {
+            Ok(m) => m,
+            Err(e) => {
+                problem = Some(format!(
+                    "the log is damaged after {messages} messages ({e}); the messages before it were kept"
+                ));
+                break;
+            }
+        };
+        let schema = message.channel.schema.as_ref().map(|s| s.name.as_str()).unwrap_or("");
+        let topic = message.channel.topic.as_str();
+        let known = super::TOPICS.iter().any(|(t, m)| *t == topic && schema == proto::full_name(m));
+        if !known || message.channel.message_encoding != "protobuf" {
+            *skipped.entry(topic.to_string()).or_default() += 1;
+            continue;
+        }
+        let data: &[u8] = &message.data;
+        let bad = |e: prost::DecodeError| format!("message {} on {topic} does not decode: {e}", messages + 1);
+        let decoded: Result<(), String> = (|| {
+            match topic {
+                super::TOPIC_RUN => {
+                    let run = proto::Run::decode(data).map_err(bad)?;
+                    let parsed: LogHeader =
+                        toml::from_str(&run.header).map_err(|e| format!("the run header is unreadable: {e}"))?;
+                    if parsed.format != super::FORMAT {
+                        return Err(format!("log format {} is not {}", parsed.format, super::FORMAT));
+                    }
+                    header = Some(parsed);
+                }
+                super::TOPIC_SEGMENTS => {
+                    let m = proto::SegmentStates::decode(data).map_err(bad)?;
+                    let step = m.step;
+                    parts.entry(step).or_default().segments = Some(m);
+                }
+                super::TOPIC_NODES => {
+                    let m = proto::NodeDisplacements::decode(data).map_err(bad)?;
+                    let step = m.step;
+                    parts.entry(step).or_default().nodes = Some(m);
+                }
+                super::TOPIC_MESH => {
+                    let m = proto::MeshDisplacements::decode(data).map_err(bad)?;
+                    let step = m.step;
+                    parts.entry(step).or_default().mesh = Some(m);
+                }
+                super::TOPIC_TOTALS => {
+                    let m = proto::Totals::decode(data).map_err(bad)?;
+                    let step = m.step;
+                    parts.entry(step).or_default().totals = Some(m);
+                }
+                super::TOPIC_EVENTS => {
+                    catalog.events.push(proto::SlipEvent::decode(data).map_err(bad)?.into());
+                }
+                super::TOPIC_RUPTURES => {
+                    catalog.ruptures.push(proto::Rupture::decode(data).map_err(bad)?.into());
+                }
+                super::TOPIC_ENDING => {
+                    let m = proto::Ending::decode(data).map_err(bad)?;
+                    ending =
+                        Some(toml::from_str(&m.ending).map_err(|e| format!("the ending record is unreadable: {e}"))?);
+                }
+                _ => unreachable!("known topics only"),
+            }
+            Ok(())
+        })();
+        if let Err(e) = decoded {
+            problem = Some(format!("{e}; the messages before it were kept"));
+            break;
+        }
+        messages += 1;
+    }
+    let Some(header) = header else {
+        let others = if skipped.is_empty() {
+            String::new()
+        } else {
+            format!(" (it holds {:?})", skipped.keys().collect::<Vec<_>>())
+        };
+        return Err(ReadError(format!(
+            "{} holds no slipfront run header on {}{others}: not a slipfront log, or damaged before it",
+            path.display(),
+            super::TOPIC_RUN
+        )));
+    };
+    let (frames, incomplete) = assemble(&header, parts);
+    if incomplete > 0 {
+        let note = format!("{incomplete} recorded steps were incomplete and dropped");
+        problem = Some(match problem {
+            Some(p) => format!("{p}; {note}"),
+            None => note,
+        });
+    }
+    catalog.events.sort_by(|a, b| a.onset.total_cmp(&b.onset).then(a.segment.cmp(&b.segment)));
+    catalog.ruptures.sort_by(|a, b| a.onset.total_cmp(&b.onset));
+    Ok(Log { header, frames, catalog, ending, messages, problem, skipped })
+}
+
+/// Builds frames from their parts; returns them and how many steps lacked a part.
+fn assemble(header: &LogHeader, parts: BTreeMap<u32, Parts>) -> (Vec<Frame>, usize) {
+    let layout = &header.layout;
+    let segments = layout.segments.len();
+    let nodes_expected = match &header.plan.spec.nodes {
+        crate::case::Selection::Indices(list) => !list.is_empty(),
+        _ => false,
+    };
+    let mesh_expected = header.plan.spec.spatial && layout.mesh.is_some();
+    let mut frames = Vec::with_capacity(parts.len());
+    let mut incomplete = 0;
+    let mut previous_time = 0.0;
+    for (step, p) in parts {
+        let (Some(s), Some(totals)) = (p.segments, p.totals) else {
+            incomplete += 1;
+            continue;
+        };
+        if (nodes_expected && p.nodes.is_none()) || (mesh_expected && p.mesh.is_none()) || s.slip_rate.len() != segments
+        {
+            incomplete += 1;
+            continue;
+        }
+        let at = |v: &Vec<f64>, k: usize| v.get(k).copied().unwrap_or(0.0);
+        let samples = (0..segments)
+            .map(|k| SegmentSample {
+                traction_t: at(&s.traction_t, k),
+                traction_n: at(&s.traction_n, k),
+                sliding_ratio: at(&s.sliding_ratio, k),
+                r_star: at(&s.r_star, k),
+                structure: at(&s.structure, k),
+                slip_rate: at(&s.slip_rate, k),
+                slip: at(&s.slip, k),
+            })
+            .collect();
+        let mut surface_nodes = vec![[0.0; 2]; layout.surface_nodes.len()];
+        if let Some(n) = &p.nodes {
+            for (i, &j) in n.nodes.iter().enumerate() {
+                if let Some(slot) = surface_nodes.get_mut(j as usize) {
+                    *slot = [at(&n.u_x, i), at(&n.u_y, i)];
+                }
+            }
+        }
+        let mesh = p.mesh.map(|m| m.u_x.iter().zip(&m.u_y).map(|(x, y)| [*x, *y]).collect()).unwrap_or_default();
+        let dt = if frames.is_empty() { 0.0 } else { s.time - previous_time };
+        previous_time = s.time;
+        frames.push(Frame {
+            step: step as u64,
+            time: s.time,
+            dt,
+            segments: samples,
+            surface_nodes,
+            mesh,
+            friction_force: totals.friction_force,
+            base_displacement: totals.base_u_x,
+            block: layout.kind.has_block().then_some([totals.block_x, totals.block_v]),
+        });
+    }
+    (frames, incomplete)
+}

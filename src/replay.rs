@@ -1,0 +1,44 @@
+//! `slipfront replay`: a slipfront MCAP log back into Rerun, through the very sink a live run
+//! uses, so the replayed recording holds what the live one held (schema, blueprint, values).
+
+use std::time::{Duration, Instant};
+
+use rerun::RecordingStream;
+
+use crate::inspect::{ReadError, Recording, rrd};
+use crate::mcap_log::reader::Log;
+use crate::sink::recording::RerunSink;
+use crate::sink::{Ending, Sink, SinkError};
+
+/// Re-emits `log` into `stream`. With `speed`, simulated time runs at `speed` × wall time.
+pub fn replay(log: &Log, stream: RecordingStream, speed: Option<f64>) -> Result<(), SinkError> {
+    let mut sink = RerunSink::new(stream, log.header.plan.clone());
+    sink.begin(&log.header.layout)?;
+    let start = Instant::now();
+    for frame in &log.frames {
+        if let Some(speed) = speed {
+            let due = Duration::from_secs_f64(frame.time / speed);
+            if let Some(wait) = due.checked_sub(start.elapsed()) {
+                std::thread::sleep(wait);
+            }
+        }
+        sink.record(frame)?;
+    }
+    // A log cut off before its ending record replays as an interrupted run.
+    let ending = match log.ending.as_ref().map(|e| e.ending.as_str()) {
+        Some("completed") => Ending::Completed,
+        Some("failed") => Ending::Failed,
+        _ => Ending::Interrupted,
+    };
+    sink.finish(ending, &log.catalog)
+}
+
+/// The recording a log replays into, read back for `check`.
+pub fn replayed_recording(log: &Log) -> Result<Recording, ReadError> {
+    let (stream, storage) = rerun::RecordingStreamBuilder::new(crate::sink::schema::APP_ID)
+        .enabled(true)
+        .memory()
+        .map_err(|e| ReadError(format!("cannot replay the log in memory: {e}")))?;
+    replay(log, stream, None).map_err(|e| ReadError(format!("cannot replay the log: {e}")))?;
+    Ok(rrd::from_messages(storage.take().into_iter().map(Ok)))
+}

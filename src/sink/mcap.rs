@@ -1,0 +1,189 @@
+//! The MCAP sink (`slipfront run --mcap PATH`): the recorded frames as protobuf messages
+//! ([`crate::mcap_log`]), zstd-compressed chunks with a summary and chunk indexes.
+
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use mcap::records::MessageHeader;
+use mcap::{WriteOptions, Writer};
+use prost::Message as _;
+
+use super::events::Catalog;
+use super::schema::{Decimator, Quantity, RecordingPlan, RunEnding, selection};
+use super::{Ending, Sink, SinkError};
+use crate::case::Selection;
+use crate::mcap_log::{self, LogHeader, nanos, proto};
+use crate::scene::{Frame, Layout, Needs};
+
+/// Writes a slipfront MCAP log.
+pub struct McapSink {
+    path: PathBuf,
+    writer: Option<Writer<BufWriter<File>>>,
+    plan: RecordingPlan,
+    decimator: Decimator,
+    channels: BTreeMap<&'static str, u16>,
+    sequence: u32,
+    nodes: Vec<usize>,
+    mesh: bool,
+    rows: u64,
+    last_time: f64,
+    needs: Needs,
+}
+
+impl McapSink {
+    /// Creates the file now, so that an unwritable path fails before the run.
+    pub fn create(path: &Path, plan: RecordingPlan) -> Result<Self, String> {
+        let file = File::create(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        let writer = WriteOptions::new()
+            .compression_threads(0)
+            .library(concat!("slipfront ", env!("CARGO_PKG_VERSION")))
+            .create(BufWriter::new(file))
+            .map_err(|e| format!("cannot start the MCAP log {}: {e}", path.display()))?;
+        let needs = Needs { segment_state: plan.spec.quantities.iter().any(|q| q.needs_state()), ..Needs::default() };
+        Ok(Self {
+            path: path.to_path_buf(),
+            writer: Some(writer),
+            decimator: Decimator::new(&plan),
+            plan,
+            channels: BTreeMap::new(),
+            sequence: 0,
+            nodes: Vec::new(),
+            mesh: false,
+            rows: 0,
+            last_time: 0.0,
+            needs,
+        })
+    }
+
+    fn write(&mut self, topic: &'static str, time: f64, data: &[u8]) -> Result<(), SinkError> {
+        let channel_id = self.channels[topic];
+        self.sequence = self.sequence.wrapping_add(1);
+        let header =
+            MessageHeader { channel_id, sequence: self.sequence, log_time: nanos(time), publish_time: nanos(time) };
+        let path = &self.path;
+        self.writer
+            .as_mut()
+            .expect("the writer lives until finish")
+            .write_to_known_channel(&header, data)
+            .map_err(|e| SinkError(format!("cannot write {}: {e}", path.display())))
+    }
+}
+
+impl Sink for McapSink {
+    fn needs(&self) -> Needs {
+        self.needs
+    }
+
+    fn begin(&mut self, layout: &Layout) -> Result<(), SinkError> {
+        let (segments, nodes) = selection(&self.plan.spec, layout);
+        self.mesh = self.plan.spec.spatial && layout.mesh.is_some();
+        self.needs.surface_nodes = !nodes.is_empty();
+        self.needs.mesh = self.mesh;
+        self.nodes = nodes.clone();
+        let mut plan = self.plan.clone();
+        plan.spec.segments = Selection::Indices(segments);
+        plan.spec.nodes = Selection::Indices(nodes);
+        let header = LogHeader { format: mcap_log::FORMAT.into(), plan, layout: layout.clone() };
+        let text = toml::to_string(&header).map_err(|e| SinkError(format!("cannot describe the run: {e}")))?;
+        let descriptor = proto::file_descriptor_set();
+        let writer = self.writer.as_mut().expect("the writer lives until finish");
+        let error = |e: mcap::McapError| SinkError(format!("cannot write the MCAP log: {e}"));
+        for (topic, message) in mcap_log::TOPICS {
+            let schema = writer.add_schema(&proto::full_name(message), "protobuf", &descriptor).map_err(error)?;
+            let channel = writer.add_channel(schema, topic, "protobuf", &BTreeMap::new()).map_err(error)?;
+            self.channels.insert(topic, channel);
+        }
+        self.write(mcap_log::TOPIC_RUN, 0.0, &proto::Run { header: text }.encode_to_vec())
+    }
+
+    fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
+        if !self.decimator.keep(frame) {
+            return Ok(());
+        }
+        let step =
+            u32::try_from(frame.step).map_err(|_| SinkError(format!("step {} exceeds the log's u32", frame.step)))?;
+        let wanted = |q: Quantity| self.plan.spec.quantities.contains(&q);
+        let column = |q: Quantity| -> Vec<f64> {
+            if wanted(q) { frame.segments.iter().map(|s| q.of(s)).collect() } else { Vec::new() }
+        };
+        let segments = proto::SegmentStates {
+            time: frame.time,
+            step,
+            traction_t: column(Quantity::TractionT),
+            traction_n: column(Quantity::TractionN),
+            sliding_ratio: column(Quantity::R),
+            r_star: column(Quantity::RStar),
+            structure: column(Quantity::Structure),
+            // The spatial and space-time views colour every segment by its slip rate.
+            slip_rate: frame.segments.iter().map(|s| s.slip_rate).collect(),
+            slip: column(Quantity::Slip),
+        };
+        self.write(mcap_log::TOPIC_SEGMENTS, frame.time, &segments.encode_to_vec())?;
+        if !self.nodes.is_empty() {
+            let nodes = proto::NodeDisplacements {
+                time: frame.time,
+                step,
+                nodes: self.nodes.iter().map(|&j| j as u32).collect(),
+                u_x: self.nodes.iter().map(|&j| frame.surface_nodes[j][0]).collect(),
+                u_y: self.nodes.iter().map(|&j| frame.surface_nodes[j][1]).collect(),
+            };
+            self.write(mcap_log::TOPIC_NODES, frame.time, &nodes.encode_to_vec())?;
+        }
+        if self.mesh {
+            let mesh = proto::MeshDisplacements {
+                time: frame.time,
+                step,
+                u_x: frame.mesh.iter().map(|u| u[0]).collect(),
+                u_y: frame.mesh.iter().map(|u| u[1]).collect(),
+            };
+            self.write(mcap_log::TOPIC_MESH, frame.time, &mesh.encode_to_vec())?;
+        }
+        let [block_x, block_v] = frame.block.unwrap_or([0.0, 0.0]);
+        let totals = proto::Totals {
+            time: frame.time,
+            step,
+            friction_force: frame.friction_force,
+            base_u_x: frame.base_displacement,
+            block_x,
+            block_v,
+        };
+        self.write(mcap_log::TOPIC_TOTALS, frame.time, &totals.encode_to_vec())?;
+        self.rows += 1;
+        self.last_time = frame.time;
+        Ok(())
+    }
+
+    fn finish(&mut self, ending: Ending, catalog: &Catalog) -> Result<(), SinkError> {
+        if self.writer.is_none() || self.channels.is_empty() {
+            return Ok(());
+        }
+        for e in &catalog.events {
+            self.write(mcap_log::TOPIC_EVENTS, e.onset, &proto::SlipEvent::from(e).encode_to_vec())?;
+        }
+        for r in &catalog.ruptures {
+            self.write(mcap_log::TOPIC_RUPTURES, r.onset, &proto::Rupture::from(r).encode_to_vec())?;
+        }
+        let summary = RunEnding::new(ending, self.last_time, self.rows, catalog);
+        let text = toml::to_string(&summary).map_err(|e| SinkError(format!("cannot describe the ending: {e}")))?;
+        self.write(mcap_log::TOPIC_ENDING, self.last_time, &proto::Ending { ending: text }.encode_to_vec())?;
+        // The summary and chunk indexes are written here; readers that seek need them.
+        let mut writer = self.writer.take().expect("checked above");
+        let path = &self.path;
+        let error = |e: &dyn std::fmt::Display| SinkError(format!("cannot finish {}: {e}", path.display()));
+        writer.finish().map_err(|e| error(&e))?;
+        writer.into_inner().flush().map_err(|e| error(&e))
+    }
+}
+
+impl Ending {
+    /// `completed`, `failed` or `interrupted`, as the logs record it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Ending::Completed => "completed",
+            Ending::Failed => "failed",
+            Ending::Interrupted => "interrupted",
+        }
+    }
+}
