@@ -218,12 +218,7 @@ fn run_command(args: RunArgs) -> ExitCode {
         scene.as_mut(),
         &case.time,
         &mut sinks,
-        LoopOptions {
-            progress: !args.quiet,
-            interrupt: Some(&interrupt),
-            slip_rate_threshold: case.slip_rate_threshold(),
-            merge_within: case.events.merge_within,
-        },
+        LoopOptions { progress: !args.quiet, interrupt: Some(&interrupt), ..LoopOptions::for_case(&case) },
     );
     let mut outputs: Vec<String> = rrd_path.iter().chain(&args.mcap).map(|p| p.display().to_string()).collect();
     outputs.push(events_path.display().to_string());

@@ -4,6 +4,7 @@
 pub mod case;
 pub mod cli;
 pub mod dynamics;
+pub mod ensemble;
 pub mod fem;
 pub mod figures;
 pub mod friction;

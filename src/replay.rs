@@ -30,7 +30,7 @@ pub fn replay(log: &Log, stream: RecordingStream, speed: Option<f64>) -> Result<
         Some("failed") => Ending::Failed,
         _ => Ending::Interrupted,
     };
-    sink.finish(ending, &log.catalog)
+    sink.finish(ending, log.frames.last(), &log.catalog)
 }
 
 /// The recording a log replays into, read back for `check`.

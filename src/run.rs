@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::case::TimeSpec;
+use crate::case::{Case, TimeSpec};
 use crate::scene::{Frame, Layout, Needs, RunError, Scene};
 use crate::sink::events::{Catalog, EventDetector};
 use crate::sink::{Ending, Sink, SinkError};
@@ -33,18 +33,37 @@ pub struct LoopOptions<'a> {
     /// Slip-rate threshold (m/s) and merge window (s) of the event catalog.
     pub slip_rate_threshold: f64,
     pub merge_within: f64,
+    /// What the caller needs in every frame beyond what the sinks need (e.g.
+    /// [`Needs::segment_state`], for `1/R*` at the onsets of the catalog's events).
+    pub needs: Needs,
 }
 
-/// The sinks and the event detector that observe a run.
+impl LoopOptions<'_> {
+    /// The case's catalog settings, without a progress bar, an interrupt flag or extra needs.
+    pub fn for_case(case: &Case) -> Self {
+        Self {
+            progress: false,
+            interrupt: None,
+            slip_rate_threshold: case.slip_rate_threshold(),
+            merge_within: case.events.merge_within,
+            needs: Needs::default(),
+        }
+    }
+}
+
+/// The sinks and the event detector that observe a run, and the last frame they were given.
 struct Observers<'s, 'b> {
     sinks: &'s mut [Box<dyn Sink + 'b>],
     detector: EventDetector,
+    last: Option<Frame>,
 }
 
 impl Observers<'_, '_> {
-    fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
-        self.detector.record(frame);
-        self.sinks.iter_mut().try_for_each(|sink| sink.record(frame))
+    fn record(&mut self, frame: Frame) -> Result<(), SinkError> {
+        self.detector.record(&frame);
+        let result = self.sinks.iter_mut().try_for_each(|sink| sink.record(&frame));
+        self.last = Some(frame);
+        result
     }
 
     /// Closes the catalog and finishes every sink (all of them, even after one fails).
@@ -52,7 +71,7 @@ impl Observers<'_, '_> {
         let catalog = self.detector.into_catalog();
         let mut first_error = Ok(());
         for sink in self.sinks.iter_mut() {
-            let result = sink.finish(ending, &catalog);
+            let result = sink.finish(ending, self.last.as_ref(), &catalog);
             if first_error.is_ok() {
                 first_error = result;
             }
@@ -69,7 +88,7 @@ pub fn run(
     sinks: &mut [Box<dyn Sink + '_>],
     options: LoopOptions<'_>,
 ) -> Outcome {
-    let needs = sinks.iter().fold(Needs::default(), |n, s| n.union(s.needs()));
+    let needs = sinks.iter().fold(options.needs, |n, s| n.union(s.needs()));
     let layout: Layout = scene.layout().clone();
     for sink in sinks.iter_mut() {
         if let Err(e) = sink.begin(&layout) {
@@ -77,8 +96,8 @@ pub fn run(
         }
     }
     let detector = EventDetector::new(layout.segments.len(), options.slip_rate_threshold, options.merge_within);
-    let mut observers = Observers { sinks, detector };
-    if let Err(e) = observers.record(&scene.frame(needs, 0.0)) {
+    let mut observers = Observers { sinks, detector, last: None };
+    if let Err(e) = observers.record(scene.frame(needs, 0.0)) {
         let _ = observers.finish(Ending::Failed);
         return Outcome::Sink(e);
     }
@@ -109,7 +128,7 @@ pub fn run(
                 Err(e) => Outcome::Sink(e),
             };
         }
-        if let Err(e) = observers.record(&scene.frame(needs, dt)) {
+        if let Err(e) = observers.record(scene.frame(needs, dt)) {
             bar.finish_and_clear();
             let _ = observers.finish(Ending::Failed);
             return Outcome::Sink(e);

@@ -63,6 +63,8 @@ fn measured_period(case: &Case, initial_velocity: f64, dt: f64, periods: f64, ex
             let [x, _] = mesh.node_dofs(mesh.surface_node(i)).unwrap();
             d.state.velocity[x] = initial_velocity;
         }
+        // The energy balance starts from this initial condition.
+        d.track_energy();
     }
     let steps = (periods * expected / dt).round() as usize;
     let mut samples = Vec::with_capacity(steps);

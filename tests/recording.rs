@@ -110,7 +110,7 @@ impl Sink for Frames {
         self.0.borrow_mut().push(frame.clone());
         Ok(())
     }
-    fn finish(&mut self, _: Ending, _: &Catalog) -> Result<(), SinkError> {
+    fn finish(&mut self, _: Ending, _: Option<&Frame>, _: &Catalog) -> Result<(), SinkError> {
         Ok(())
     }
 }
@@ -135,12 +135,7 @@ fn run_recorded(case: &Case, path: &Path) -> (Vec<Frame>, Catalog) {
     let frames = Frames::default();
     let collected = frames.0.clone();
     let mut sinks: Vec<Box<dyn Sink>> = vec![Box::new(RerunSink::new(stream, plan)), Box::new(frames)];
-    let options = LoopOptions {
-        progress: false,
-        interrupt: None,
-        slip_rate_threshold: case.slip_rate_threshold(),
-        merge_within: case.events.merge_within,
-    };
+    let options = LoopOptions::for_case(case);
     let Outcome::Completed { catalog, .. } = run(scene.as_mut(), &case.time, &mut sinks, options) else {
         panic!("the run did not complete")
     };
@@ -351,7 +346,7 @@ fn check_catches_a_nan() {
         };
         sink.record(&frame).unwrap();
     }
-    sink.finish(Ending::Completed, &Catalog::default()).unwrap();
+    sink.finish(Ending::Completed, None, &Catalog::default()).unwrap();
     let recording: Recording = rrd::read(&path).unwrap();
     let report = check(&recording, &Expectations::default());
     assert!(
@@ -466,28 +461,24 @@ fn an_interrupted_run_leaves_a_finished_recording() {
 #[test]
 fn a_failed_run_leaves_a_finished_recording_up_to_its_last_good_step() {
     let out = scratch("failed");
-    // Eq. (4)'s 1/μ_k makes healing 5 times faster; over θ dt = 12.6 s the trapezoidal rule on
-    // 1/R* overshoots μ_s/μ_k at the second step, and the run stops there with a diagnostic.
+    // Healing at ξ = 1e6 /s is so stiff that the trapezoidal rule on 1/R* overshoots μ_s/μ_k
+    // (its factor (1 - λdt/2)/(1 + λdt/2) turns negative) even after the step has been halved
+    // ten times: the run stops at step 6 with a diagnostic of the point's state.
     let output = Command::new(env!("CARGO_BIN_EXE_slipfront"))
-        .args([
-            "run",
-            &case_path("spring_block"),
-            "--quiet",
-            "--set",
-            "friction.rstar_law=eq4",
-            "--set",
-            "time.dt=9",
-            "--out-dir",
-        ])
+        .args(["run", &case_path("spring_block"), "--quiet", "--set", "friction.xi=1e6", "--out-dir"])
         .arg(&out)
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(1), "{stderr}");
-    assert!(stderr.contains("run failed at step") && stderr.contains("1/R*"), "{stderr}");
+    for part in ["run failed at step 6 (t = 0.025", "segment 0", "f_t = ", "f_n = 1000 Pa", "1/R* = ", "smaller step"] {
+        assert!(stderr.contains(part), "no {part:?} in {stderr}");
+    }
     let (code, text) = check_cli(&out.join("spring_block.rrd"), None);
     assert_eq!(code, 0, "{text}");
-    assert!(text.contains("run failed"), "{text}");
+    // The initial frame and the last good step (5, at t = 0.025 s), which the decimation of
+    // stick steps would otherwise have skipped.
+    assert!(text.contains("run failed: 2 rows per series up to t = 0.025"), "{text}");
 }
 
 #[test]

@@ -25,7 +25,13 @@ fn library_amplification(omega: f64) -> DMatrix<f64> {
             base_ramp: 0.0,
             loading_direction: 1.0,
         };
-        let settings = WilsonSettings { theta: THETA, tolerance: 1e-14, velocity_scale: 1.0, max_iterations: 10 };
+        let settings = WilsonSettings {
+            theta: THETA,
+            tolerance: 1e-14,
+            velocity_scale: 1.0,
+            max_iterations: 10,
+            energy_tolerance: None,
+        };
         let mut d = Dynamics::new(body, contact, settings).unwrap();
         let mut unit = [0.0; 3];
         unit[c] = 1.0;

@@ -38,10 +38,18 @@ pub struct TimeSpec {
     /// Wilson's θ (-); 1.4 by default, at least 1.37 for unconditional stability.
     #[serde(default = "default_theta")]
     pub theta: f64,
+    /// Largest share of the work put in that the integrator may create before the run stops
+    /// as too coarse (-); 0.01 by default.
+    #[serde(default = "default_energy_tolerance")]
+    pub energy_tolerance: f64,
 }
 
 fn default_theta() -> f64 {
     1.4
+}
+
+fn default_energy_tolerance() -> f64 {
+    0.01
 }
 
 /// Most steps a run may take, to refuse a typo such as `dt = 1e-12` before it starts.
@@ -58,6 +66,7 @@ impl TimeSpec {
                 "must lie in [1.37, 3] (Wilson's method is unconditionally stable for θ ≥ 1.37)",
             );
         }
+        c.positive("energy_tolerance", self.energy_tolerance);
         if self.t_end.is_finite() && self.dt.is_finite() && self.dt > 0.0 && self.t_end > 0.0 {
             if self.dt > self.t_end {
                 c.fail("dt", self.dt, format!("must not exceed {} = {}", c.key("t_end"), self.t_end));

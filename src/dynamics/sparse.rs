@@ -6,7 +6,7 @@
 
 use faer::Side;
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 
 /// Symmetric matrix stored with both triangles in compressed sparse columns.
@@ -120,7 +120,7 @@ pub enum FactorError {
 impl std::fmt::Display for FactorError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            FactorError::NotPositiveDefinite => write!(f, "the step's operator is not positive definite"),
+            FactorError::NotPositiveDefinite => write!(f, "the step's operator is singular"),
             FactorError::OutOfMemory => write!(f, "out of memory while factoring the step's operator"),
         }
     }
@@ -128,10 +128,18 @@ impl std::fmt::Display for FactorError {
 
 impl std::error::Error for FactorError {}
 
-/// Sparse Cholesky factorization `A = L Lᵀ` of a [`SymmetricMatrix`], symbolic part reused.
+/// Sparse Cholesky factorization `A = L Lᵀ` of a [`SymmetricMatrix`], symbolic part reused;
+/// an indefinite matrix (strongly softening contact tangents at large steps) falls back to
+/// sparse LU with partial pivoting.
 pub struct Cholesky {
     symbolic: SymbolicLlt<usize>,
-    numeric: Option<Llt<usize, f64>>,
+    numeric: Option<Factors>,
+    symbolic_lu: Option<SymbolicLu<usize>>,
+}
+
+enum Factors {
+    Llt(Llt<usize, f64>),
+    Lu(Box<Lu<usize, f64>>),
 }
 
 impl Cholesky {
@@ -139,25 +147,37 @@ impl Cholesky {
     pub fn analyze(matrix: &SymmetricMatrix) -> Result<Self, FactorError> {
         let symbolic =
             SymbolicLlt::try_new(matrix.pattern.as_ref(), Side::Lower).map_err(|_| FactorError::OutOfMemory)?;
-        Ok(Self { symbolic, numeric: None })
+        Ok(Self { symbolic, numeric: None, symbolic_lu: None })
     }
 
     /// Numeric factorization of `matrix`, which must have the analyzed pattern.
     pub fn factor(&mut self, matrix: &SymmetricMatrix) -> Result<(), FactorError> {
         self.numeric = None;
-        let llt =
-            Llt::try_new_with_symbolic(self.symbolic.clone(), matrix.as_faer(), Side::Lower).map_err(|e| match e {
-                faer::sparse::linalg::LltError::Numeric(_) => FactorError::NotPositiveDefinite,
-                faer::sparse::linalg::LltError::Generic(_) => FactorError::OutOfMemory,
-            })?;
-        self.numeric = Some(llt);
+        match Llt::try_new_with_symbolic(self.symbolic.clone(), matrix.as_faer(), Side::Lower) {
+            Ok(llt) => {
+                self.numeric = Some(Factors::Llt(llt));
+                return Ok(());
+            }
+            Err(faer::sparse::linalg::LltError::Generic(_)) => return Err(FactorError::OutOfMemory),
+            Err(faer::sparse::linalg::LltError::Numeric(_)) => {}
+        }
+        if self.symbolic_lu.is_none() {
+            self.symbolic_lu =
+                Some(SymbolicLu::try_new(matrix.pattern.as_ref()).map_err(|_| FactorError::OutOfMemory)?);
+        }
+        let symbolic = self.symbolic_lu.clone().expect("set above");
+        let lu = Lu::try_new_with_symbolic(symbolic, matrix.as_faer()).map_err(|_| FactorError::NotPositiveDefinite)?;
+        self.numeric = Some(Factors::Lu(Box::new(lu)));
         Ok(())
     }
 
     /// Solves `A x = b` in place (`rhs` holds `b` on entry, `x` on exit).
     pub fn solve_in_place(&self, rhs: &mut [f64]) {
-        let llt = self.numeric.as_ref().expect("factor() must succeed before solve_in_place()");
         let n = rhs.len();
-        llt.solve_in_place(faer::MatMut::from_column_major_slice_mut(rhs, n, 1));
+        let rhs = faer::MatMut::from_column_major_slice_mut(rhs, n, 1);
+        match self.numeric.as_ref().expect("factor() must succeed before solve_in_place()") {
+            Factors::Llt(llt) => llt.solve_in_place(rhs),
+            Factors::Lu(lu) => lu.solve_in_place(rhs),
+        }
     }
 }

@@ -42,11 +42,15 @@ pub struct WilsonSettings {
     pub velocity_scale: f64,
     /// Newton iterations allowed per step.
     pub max_iterations: usize,
+    /// With `Some(share)`, the energy balance is kept from the start and a step after which the
+    /// integrator has created more than `share` of the work put in (or of the contact's
+    /// kinetic-strength energy, early on) fails with [`StepError::EnergyCreated`].
+    pub energy_tolerance: Option<f64>,
 }
 
 impl Default for WilsonSettings {
     fn default() -> Self {
-        Self { theta: 1.4, tolerance: 1e-10, velocity_scale: 1e-3, max_iterations: 40 }
+        Self { theta: 1.4, tolerance: 1e-10, velocity_scale: 1e-3, max_iterations: 40, energy_tolerance: None }
     }
 }
 
@@ -78,6 +82,9 @@ pub enum StepError {
     Factor(FactorError),
     /// A non-finite value appeared.
     NonFinite,
+    /// The integrator created more energy than its tolerance allows (the step is too coarse
+    /// for the dynamics): `created` as a share of the work put in.
+    EnergyCreated { share: f64, tolerance: f64 },
 }
 
 impl fmt::Display for StepError {
@@ -94,16 +101,42 @@ impl fmt::Display for StepError {
             ),
             StepError::Factor(e) => write!(f, "{e}"),
             StepError::NonFinite => write!(f, "a non-finite value appeared in the solution"),
+            StepError::EnergyCreated { share, tolerance } => write!(
+                f,
+                "the energy balance does not close: the integrator has created energy equal to {:.3}% of the \
+                 work put in (allowed: {:.3}%), so the time step is too coarse for this case's dynamics",
+                100.0 * share,
+                100.0 * tolerance
+            ),
         }
     }
 }
 
 impl std::error::Error for StepError {}
 
+/// How many times a failing step may be halved (down to 1/1024 of it).
+pub const MAX_HALVINGS: u32 = 10;
+
+impl StepError {
+    /// Whether a shorter step may succeed where this one failed.
+    fn cured_by_shorter_steps(&self) -> bool {
+        matches!(
+            self,
+            StepError::NotConverged { .. }
+                | StepError::Factor(FactorError::NotPositiveDefinite)
+                | StepError::Friction {
+                    error: FrictionError::StructureOutOfRange { .. } | FrictionError::NotConverged { .. },
+                    ..
+                }
+        )
+    }
+}
+
 /// Running energy balance (J per unit thickness, or J/m² per unit area).
 ///
-/// `work_base + work_load = kinetic + strain + contact_elastic + dissipation + numerical`,
-/// where `numerical` is what the integrator itself dissipates (or adds).
+/// `initial + work_base + work_load = kinetic + strain + contact_elastic + dissipation + numerical`,
+/// where `initial` is what was stored when tracking began and `numerical` is what the
+/// integrator itself dissipates (or adds).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct EnergyLedger {
     /// `∫ Σ w f_t v_base dt`: work the moving base does through the contact.
@@ -118,12 +151,16 @@ pub struct EnergyLedger {
     pub contact_elastic: f64,
     /// `∫ Σ w Λ |f_t| dt`: frictional dissipation.
     pub dissipation: f64,
+    /// Kinetic + strain + contact-elastic energy when tracking began (0 from the initial
+    /// equilibrium at rest).
+    pub initial: f64,
 }
 
 impl EnergyLedger {
     /// The integrator's own dissipation: input minus everything accounted for.
     pub fn numerical(&self) -> f64 {
-        self.work_base + self.work_load - (self.kinetic + self.strain + self.contact_elastic + self.dissipation)
+        self.initial + self.work_base + self.work_load
+            - (self.kinetic + self.strain + self.contact_elastic + self.dissipation)
     }
 }
 
@@ -143,6 +180,10 @@ pub struct Dynamics {
     cholesky: Cholesky,
     factored: Option<(f64, Vec<f64>)>,
     ledger: Option<EnergyLedger>,
+    /// `Σ w (μ_k f_n)² / 2α_t`: the contact springs' energy at kinetic strength, the scale the
+    /// energy check uses before much work has been done.
+    energy_scale: f64,
+    split_steps: u64,
 }
 
 /// What the Newton loop evaluates at a trial `u_θ`.
@@ -194,7 +235,14 @@ impl Dynamics {
             .collect();
         let cholesky = Cholesky::analyze(&jacobian).map_err(StepError::Factor)?;
         let n_points = contact.points.len();
-        Ok(Self {
+        let p = &contact.params;
+        let energy_scale = contact
+            .points
+            .iter()
+            .zip(&contact.traction_n)
+            .map(|(point, f_n)| point.weight * (p.mu_k * f_n).powi(2) / (2.0 * p.alpha_t))
+            .sum();
+        let mut dynamics = Self {
             state: State {
                 time: 0.0,
                 step: 0,
@@ -217,13 +265,20 @@ impl Dynamics {
             cholesky,
             factored: None,
             ledger: None,
-        })
+            energy_scale,
+            split_steps: 0,
+        };
+        if dynamics.settings.energy_tolerance.is_some() {
+            dynamics.track_energy();
+        }
+        Ok(dynamics)
     }
 
     /// Keeps an [`EnergyLedger`] from now on (costs one product with `K` per step).
     pub fn track_energy(&mut self) {
         let mut ledger = EnergyLedger::default();
         self.refresh_stored_energy(&mut ledger);
+        ledger.initial = ledger.kinetic + ledger.strain + ledger.contact_elastic;
         self.ledger = Some(ledger);
     }
 
@@ -232,8 +287,29 @@ impl Dynamics {
         self.ledger
     }
 
-    /// Advances the state by `dt`.
+    /// Advances the state by `dt`. A step that fails in a way a shorter step can cure (Newton
+    /// not converging across a stick/slip switch, `1/R*` leaving its range, a singular
+    /// operator) is retried as two half steps, down to `dt / 2^MAX_HALVINGS`; the state is left
+    /// untouched by a failed attempt.
     pub fn step(&mut self, dt: f64) -> Result<(), StepError> {
+        self.step_halving(dt, 0)
+    }
+
+    fn step_halving(&mut self, dt: f64, depth: u32) -> Result<(), StepError> {
+        match self.try_step(dt) {
+            Err(e) if depth < MAX_HALVINGS && e.cured_by_shorter_steps() => {
+                self.split_steps += 1;
+                self.step_halving(0.5 * dt, depth + 1)?;
+                self.step_halving(0.5 * dt, depth + 1)?;
+                // The two halves count as one step of the caller's.
+                self.state.step -= 1;
+                Ok(())
+            }
+            result => result,
+        }
+    }
+
+    fn try_step(&mut self, dt: f64) -> Result<(), StepError> {
         let theta = self.settings.theta;
         let tau = theta * dt;
         let s = &self.state;
@@ -341,7 +417,9 @@ impl Dynamics {
         let theta = self.settings.theta;
         let old = self.state.clone();
         let base = self.contact.base_displacement_at(old.time + dt) - self.contact.base_displacement_at(old.time);
-        let s = &mut self.state;
+        // Work on a copy: a failure below leaves the state as it was.
+        let mut next = old.clone();
+        let s = &mut next;
         let mut du = vec![0.0; n];
         for i in 0..n {
             let a1 = old.acceleration[i] + (acceleration_theta[i] - old.acceleration[i]) / theta;
@@ -362,6 +440,8 @@ impl Dynamics {
         }
         s.time = old.time + dt;
         s.step = old.step + 1;
+        self.state = next;
+        let s = &self.state;
 
         // Imbalance of M a + K u = f⁰ + f_c - f_c(0) at t_{n+1} (Wilson enforces it at t_n + τ).
         let mut imbalance = vec![0.0; n];
@@ -386,7 +466,17 @@ impl Dynamics {
                 self.body.load_rate.iter().zip(&state.velocity).map(|(f, v)| state.time * f * v).sum()
             };
             ledger.work_base += 0.5 * dt * (power_base(&old) + power_base(&self.state));
-            ledger.work_load += 0.5 * dt * (power_load(&old) + power_load(&self.state));
+            // The load is linear in time and the velocity quadratic over the step (linear
+            // acceleration), so Simpson's rule integrates the load's power exactly.
+            let t_mid = old.time + 0.5 * dt;
+            let power_load_mid: f64 = self
+                .body
+                .load_rate
+                .iter()
+                .zip(old.velocity.iter().zip(&old.acceleration).zip(&self.state.acceleration))
+                .map(|(f, ((v, a0), a1))| t_mid * f * (v + 0.5 * dt * a0 + 0.125 * dt * (a1 - a0)))
+                .sum();
+            ledger.work_load += dt / 6.0 * (power_load(&old) + 4.0 * power_load_mid + power_load(&self.state));
             ledger.dissipation += self
                 .contact
                 .points
@@ -401,6 +491,15 @@ impl Dynamics {
                 .sum::<f64>();
             self.refresh_stored_energy(&mut ledger);
             self.ledger = Some(ledger);
+            if let Some(tolerance) = self.settings.energy_tolerance {
+                // Early on, measured against the contact's strength energy rather than the little
+                // work done so far.
+                let reference = (ledger.initial + ledger.work_base + ledger.work_load).max(self.energy_scale);
+                let share = -ledger.numerical() / reference;
+                if share > tolerance {
+                    return Err(StepError::EnergyCreated { share, tolerance });
+                }
+            }
         }
         Ok(())
     }
@@ -419,6 +518,11 @@ impl Dynamics {
             .zip(&self.initial_traction)
             .map(|((p, c), f0)| p.weight * (c.traction_t * c.traction_t - f0 * f0) / (2.0 * alpha))
             .sum();
+    }
+
+    /// How many steps (or half steps) so far had to be split in two to converge.
+    pub fn split_steps(&self) -> u64 {
+        self.split_steps
     }
 
     /// Largest nodal imbalance of the total equation at the end of the last step (N/m or Pa).

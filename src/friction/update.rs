@@ -148,9 +148,10 @@ pub fn update(
         };
         near.set(Some(log_ratio));
         let value = trial_abs - alpha * increment - ratio * mu_f * structure.value;
-        // dR/dΔp = r (-ln R), from Ψ'(R) = 1/(-ln R).
-        let slope = -alpha - mu_f * (params.r * log_ratio * structure.value + ratio * structure.d_plastic);
-        Ok(Residual { value, slope, structure })
+        // ∂ψ/∂Δp = -(α_t + hardening), with dR/dΔp = r (-ln R) from Ψ'(R) = 1/(-ln R). The
+        // hardening is kept apart from α_t: next to a very stiff contact it would be lost.
+        let hardening = mu_f * (params.r * log_ratio * structure.value + ratio * structure.d_plastic);
+        Ok(Residual { value, slope: -alpha - hardening, hardening, ratio, structure })
     };
 
     let mut lo = 0.0_f64;
@@ -159,8 +160,13 @@ pub fn update(
     // Δp = 0 is infinite, so start a little inside.
     let mut x = if ratio_start > 0.0 { 0.0 } else { hi * 1e-12 };
     let mut last = residual(x)?;
+    // A trial Δp so large that the decay of 1/R* overshoots 1 is simply too far: the root lies
+    // below it. Only an overshoot at the solution itself is an error.
+    let too_far =
+        |e: &FrictionError| matches!(e, FrictionError::StructureOutOfRange { structure, .. } if *structure < 1.0);
     // ψ is a difference of tractions of size |f_trial|: below this it is rounding noise.
     let noise = 8.0 * f64::EPSILON * trial_abs;
+    let mut overshoot = None;
     for _ in 0..200 {
         if last.value.abs() <= noise {
             break;
@@ -181,18 +187,34 @@ pub fn update(
             0.5 * (lo + hi)
         };
         let step = (next - x).abs();
-        x = next;
-        last = residual(x)?;
+        match residual(next) {
+            Ok(r) => {
+                x = next;
+                last = r;
+            }
+            Err(e) if too_far(&e) && next > lo => {
+                hi = next;
+                overshoot = Some(e);
+                if hi - lo <= 1e-14 * hi {
+                    break;
+                }
+                continue;
+            }
+            Err(e) => return Err(e),
+        }
         if step <= 1e-14 * x || hi - lo <= 1e-14 * hi {
             break;
         }
     }
     if last.value.is_nan() || last.value.abs() > 1e-9 * trial_abs.max(mu_f) {
-        return Err(FrictionError::NotConverged { residual: last.value });
+        // Closing in on the edge where 1/R* leaves its range means the root lies beyond it.
+        return Err(overshoot.unwrap_or(FrictionError::NotConverged { residual: last.value }));
     }
     let increment = x;
-    let stiffness = -last.slope; // |∂ψ/∂Δp|
-    let traction = sigma * (trial_abs - alpha * increment);
+    let stiffness = -last.slope; // |∂ψ/∂Δp| = α_t + hardening
+    // The traction on the subloading surface, |f| = R μ_k f_n / R*: exact on the surface side,
+    // where |f_trial| - α_t Δp would carry the cancellation of a large trial traction.
+    let traction = sigma * last.ratio * mu_f * last.structure.value;
     // ∂Δp/∂|f_trial| = 1/|∂ψ/∂Δp|, ∂|f_trial|/∂Δū = -α_t σ.
     let d_increment = -alpha * sigma / stiffness;
     Ok(Update {
@@ -203,7 +225,8 @@ pub fn update(
             plastic_slip: state.plastic_slip + increment,
         },
         plastic_increment: increment,
-        tangent: -alpha * (1.0 - alpha / stiffness),
+        // -α_t (1 - α_t/(α_t + h)) = -α_t h/(α_t + h), without the cancellation.
+        tangent: -alpha * last.hardening / stiffness,
         structure_tangent: last.structure.d_plastic * d_increment,
     })
 }
@@ -211,6 +234,10 @@ pub fn update(
 struct Residual {
     value: f64,
     slope: f64,
+    /// The part of `-slope` beyond `α_t`.
+    hardening: f64,
+    /// `R` from its evolution rule at this `Δp`.
+    ratio: f64,
     structure: Structure,
 }
 
@@ -245,11 +272,20 @@ fn solve_structure(
     }
     let f_min = f(min);
     let f_max = f(max);
+    // Past a bound, the rule's rate there decides: with an exponent below 1 it vanishes like a
+    // fractional power, the exact solution reaches the bound within the step and stays there;
+    // with an exponent of 1 or more it approaches the bound only asymptotically, so crossing it
+    // means the step is too large for the trapezoidal rule.
     if f_min > ROUNDING * max {
-        // Root below 1: estimate it for the message.
+        if params.m < 1.0 && plastic_increment > 0.0 {
+            return Ok(Structure { value: min, d_plastic: 0.0 });
+        }
         return Err(out_of_range(min - f_min));
     }
     if f_max < -ROUNDING * max {
+        if params.n < 1.0 && dt > 0.0 {
+            return Ok(Structure { value: max, d_plastic: 0.0 });
+        }
         return Err(out_of_range(max - f_max));
     }
     let mut z = if params.m == 1.0 && params.n == 1.0 {

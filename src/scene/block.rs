@@ -31,6 +31,7 @@ impl BlockScene {
         let settings = WilsonSettings {
             theta: case.time.theta,
             velocity_scale: spec.base_velocity.abs().max(f64::MIN_POSITIVE),
+            energy_tolerance: Some(case.time.energy_tolerance),
             ..WilsonSettings::default()
         };
         let dynamics = Dynamics::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |p| p / 2))?;

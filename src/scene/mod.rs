@@ -236,7 +236,11 @@ pub fn step_error(error: StepError, step: u64, time: f64, segment_of_point: impl
         StepError::Friction { point, .. } => Some(segment_of_point(*point)),
         _ => None,
     };
-    RunError { step, time, segment, message: error.to_string() }
+    let mut message = error.to_string();
+    if matches!(error, StepError::EnergyCreated { .. }) {
+        message.push_str(": use a smaller time.dt (or raise time.energy_tolerance)");
+    }
+    RunError { step, time, segment, message }
 }
 
 /// Turns a friction failure of the single point of a point scene into a [`RunError`].

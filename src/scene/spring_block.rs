@@ -35,6 +35,7 @@ impl SpringBlockScene {
         let settings = WilsonSettings {
             theta: case.time.theta,
             velocity_scale: spec.velocity.abs().max(f64::MIN_POSITIVE),
+            energy_tolerance: Some(case.time.energy_tolerance),
             ..WilsonSettings::default()
         };
         let dynamics = Dynamics::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |_| 0))?;
@@ -51,6 +52,11 @@ impl SpringBlockScene {
     /// The integrator, for tests that inspect it.
     pub fn dynamics(&self) -> &Dynamics {
         &self.dynamics
+    }
+
+    /// Mutable integrator, for tests that track its energy.
+    pub fn dynamics_mut(&mut self) -> &mut Dynamics {
+        &mut self.dynamics
     }
 }
 

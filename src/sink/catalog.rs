@@ -42,7 +42,7 @@ impl Sink for CatalogSink {
         Ok(())
     }
 
-    fn finish(&mut self, _ending: Ending, catalog: &Catalog) -> Result<(), SinkError> {
+    fn finish(&mut self, _ending: Ending, _last: Option<&Frame>, catalog: &Catalog) -> Result<(), SinkError> {
         write_file(&self.events_path, &events_csv(&catalog.events))?;
         if let Some(path) = &self.ruptures_path {
             write_file(path, &ruptures_csv(&catalog.ruptures))?;

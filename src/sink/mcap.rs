@@ -71,37 +71,9 @@ impl McapSink {
     }
 }
 
-impl Sink for McapSink {
-    fn needs(&self) -> Needs {
-        self.needs
-    }
-
-    fn begin(&mut self, layout: &Layout) -> Result<(), SinkError> {
-        let (segments, nodes) = selection(&self.plan.spec, layout);
-        self.mesh = self.plan.spec.spatial && layout.mesh.is_some();
-        self.needs.surface_nodes = !nodes.is_empty();
-        self.needs.mesh = self.mesh;
-        self.nodes = nodes.clone();
-        let mut plan = self.plan.clone();
-        plan.spec.segments = Selection::Indices(segments);
-        plan.spec.nodes = Selection::Indices(nodes);
-        let header = LogHeader { format: mcap_log::FORMAT.into(), plan, layout: layout.clone() };
-        let text = toml::to_string(&header).map_err(|e| SinkError(format!("cannot describe the run: {e}")))?;
-        let descriptor = proto::file_descriptor_set();
-        let writer = self.writer.as_mut().expect("the writer lives until finish");
-        let error = |e: mcap::McapError| SinkError(format!("cannot write the MCAP log: {e}"));
-        for (topic, message) in mcap_log::TOPICS {
-            let schema = writer.add_schema(&proto::full_name(message), "protobuf", &descriptor).map_err(error)?;
-            let channel = writer.add_channel(schema, topic, "protobuf", &BTreeMap::new()).map_err(error)?;
-            self.channels.insert(topic, channel);
-        }
-        self.write(mcap_log::TOPIC_RUN, 0.0, &proto::Run { header: text }.encode_to_vec())
-    }
-
-    fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
-        if !self.decimator.keep(frame) {
-            return Ok(());
-        }
+impl McapSink {
+    /// Writes one recorded step on every topic the plan asks for.
+    fn write_row(&mut self, frame: &Frame) -> Result<(), SinkError> {
         let step =
             u32::try_from(frame.step).map_err(|_| SinkError(format!("step {} exceeds the log's u32", frame.step)))?;
         let wanted = |q: Quantity| self.plan.spec.quantities.contains(&q);
@@ -154,10 +126,47 @@ impl Sink for McapSink {
         self.last_time = frame.time;
         Ok(())
     }
+}
 
-    fn finish(&mut self, ending: Ending, catalog: &Catalog) -> Result<(), SinkError> {
+impl Sink for McapSink {
+    fn needs(&self) -> Needs {
+        self.needs
+    }
+
+    fn begin(&mut self, layout: &Layout) -> Result<(), SinkError> {
+        let (segments, nodes) = selection(&self.plan.spec, layout);
+        self.mesh = self.plan.spec.spatial && layout.mesh.is_some();
+        self.needs.surface_nodes = !nodes.is_empty();
+        self.needs.mesh = self.mesh;
+        self.nodes = nodes.clone();
+        let mut plan = self.plan.clone();
+        plan.spec.segments = Selection::Indices(segments);
+        plan.spec.nodes = Selection::Indices(nodes);
+        let header = LogHeader { format: mcap_log::FORMAT.into(), plan, layout: layout.clone() };
+        let text = toml::to_string(&header).map_err(|e| SinkError(format!("cannot describe the run: {e}")))?;
+        let descriptor = proto::file_descriptor_set();
+        let writer = self.writer.as_mut().expect("the writer lives until finish");
+        let error = |e: mcap::McapError| SinkError(format!("cannot write the MCAP log: {e}"));
+        for (topic, message) in mcap_log::TOPICS {
+            let schema = writer.add_schema(&proto::full_name(message), "protobuf", &descriptor).map_err(error)?;
+            let channel = writer.add_channel(schema, topic, "protobuf", &BTreeMap::new()).map_err(error)?;
+            self.channels.insert(topic, channel);
+        }
+        self.write(mcap_log::TOPIC_RUN, 0.0, &proto::Run { header: text }.encode_to_vec())
+    }
+
+    fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
+        if self.decimator.keep(frame) { self.write_row(frame) } else { Ok(()) }
+    }
+
+    fn finish(&mut self, ending: Ending, last: Option<&Frame>, catalog: &Catalog) -> Result<(), SinkError> {
         if self.writer.is_none() || self.channels.is_empty() {
             return Ok(());
+        }
+        if let Some(frame) = last
+            && self.decimator.keep_last(frame)
+        {
+            self.write_row(frame)?;
         }
         for e in &catalog.events {
             self.write(mcap_log::TOPIC_EVENTS, e.onset, &proto::SlipEvent::from(e).encode_to_vec())?;

@@ -48,7 +48,8 @@ pub trait Sink {
     fn begin(&mut self, layout: &Layout) -> Result<(), SinkError>;
     /// Called for the initial frame and after every step.
     fn record(&mut self, frame: &Frame) -> Result<(), SinkError>;
-    /// Called once at the end, however the run ended, with the catalog of every slip event up
-    /// to the last good step.
-    fn finish(&mut self, ending: Ending, catalog: &Catalog) -> Result<(), SinkError>;
+    /// Called once at the end, however the run ended, with the last frame recorded (the last
+    /// good step; a decimating sink records it if it skipped it) and the catalog of every slip
+    /// event up to it.
+    fn finish(&mut self, ending: Ending, last: Option<&Frame>, catalog: &Catalog) -> Result<(), SinkError>;
 }

@@ -74,6 +74,45 @@ impl Observations {
     }
 }
 
+/// Whether the paper's observations 1–3 hold in one run, by the criteria below (fixed when the
+/// paper case was first calibrated, before its chaos was known; see [`crate::ensemble`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Verdict {
+    /// 1. The left end slips 4 to 6 times (the paper: 5), re-slipping at a mean `1/R*` in
+    ///    [1.4, 1.75] (the paper: ≈ 1.5, before the structure has recovered).
+    pub left_end: bool,
+    /// 2. The right end slips once, at `1/R*` ≥ 1.85 (the paper: ≈ 1.9), and further than 4 ×
+    ///    the left end's median slip.
+    pub right_end: bool,
+    /// 3. Ruptures nucleated in the left third occur and none reaches the right third; at least
+    ///    one rupture covers the whole surface and none reaches the right end without doing so.
+    pub propagation: bool,
+}
+
+impl Verdict {
+    pub fn all(self) -> bool {
+        self.left_end && self.right_end && self.propagation
+    }
+}
+
+impl Observations {
+    /// The [`Verdict`] on this run.
+    pub fn verdict(&self) -> Verdict {
+        let mean = |v: &[f64]| if v.is_empty() { f64::NAN } else { v.iter().sum::<f64>() / v.len() as f64 };
+        let left_end =
+            (4..=6).contains(&self.left_onsets.len()) && (1.4..=1.75).contains(&mean(&self.left_reslip_structure));
+        let right_end = self.right_onsets.len() == 1
+            && self.right_structure[0] >= 1.85
+            && !self.left_slips.is_empty()
+            && self.right_slips[0] > 4.0 * median(&self.left_slips);
+        let propagation = self.left_ruptures > 0
+            && self.left_ruptures_escaping == 0
+            && self.whole_ruptures > 0
+            && self.right_ruptures_partial == 0;
+        Verdict { left_end, right_end, propagation }
+    }
+}
+
 /// Median of a non-empty list.
 pub fn median(values: &[f64]) -> f64 {
     let mut v = values.to_vec();

@@ -69,7 +69,32 @@ impl RerunSink {
         self.rec.as_ref().expect("the stream lives until finish")
     }
 
-    /// Sends the buffered rows of every series as one chunk each.
+    /// Appends one recorded step to the buffered columns, flushing them when full.
+    fn write_row(&mut self, frame: &Frame) -> Result<(), SinkError> {
+        self.steps.push(frame.step as i64);
+        self.times.push(frame.time);
+        for ((_, source), values) in self.series.iter().zip(&mut self.values) {
+            values.push(source.of(frame));
+        }
+        self.rows += 1;
+        self.last_time = frame.time;
+        if self.plan.spec.spatial {
+            // Recorded steps only, so that a replayed log draws the same image.
+            let segments = frame.segments.len();
+            let row = ((frame.time / self.plan.t_end * SPACETIME_ROWS as f64) as usize).min(SPACETIME_ROWS - 1);
+            for (k, s) in frame.segments.iter().enumerate() {
+                let cell = &mut self.spacetime[row * segments + k];
+                *cell = cell.max(s.slip_rate as f32);
+            }
+            let layout = self.layout.as_ref().expect("begin() ran");
+            self.geometry.push(frame, layout, &self.plan);
+        }
+        if self.steps.len() >= ROWS_PER_CHUNK || self.geometry.points() >= GEOMETRY_POINTS_PER_CHUNK {
+            self.flush_columns()?;
+        }
+        Ok(())
+    }
+
     /// Sends the buffered rows of every series and geometry entity, one chunk each.
     fn flush_columns(&mut self) -> Result<(), SinkError> {
         if self.steps.is_empty() {
@@ -214,38 +239,18 @@ impl Sink for RerunSink {
     }
 
     fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
-        if !self.decimator.keep(frame) {
-            return Ok(());
-        }
-        self.steps.push(frame.step as i64);
-        self.times.push(frame.time);
-        for ((_, source), values) in self.series.iter().zip(&mut self.values) {
-            values.push(source.of(frame));
-        }
-        self.rows += 1;
-        self.last_time = frame.time;
-        if self.plan.spec.spatial {
-            // Recorded steps only, so that a replayed log draws the same image.
-            let segments = frame.segments.len();
-            let row = ((frame.time / self.plan.t_end * SPACETIME_ROWS as f64) as usize).min(SPACETIME_ROWS - 1);
-            for (k, s) in frame.segments.iter().enumerate() {
-                let cell = &mut self.spacetime[row * segments + k];
-                *cell = cell.max(s.slip_rate as f32);
-            }
-            let layout = self.layout.as_ref().expect("begin() ran");
-            self.geometry.push(frame, layout, &self.plan);
-        }
-        if self.steps.len() >= ROWS_PER_CHUNK || self.geometry.points() >= GEOMETRY_POINTS_PER_CHUNK {
-            self.flush_columns()?;
-        }
-        Ok(())
+        if self.decimator.keep(frame) { self.write_row(frame) } else { Ok(()) }
     }
 
-    fn finish(&mut self, ending: Ending, catalog: &Catalog) -> Result<(), SinkError> {
+    fn finish(&mut self, ending: Ending, last: Option<&Frame>, catalog: &Catalog) -> Result<(), SinkError> {
         if self.rec.is_none() {
             return Ok(());
         }
-        let mut result = self.flush_columns();
+        let mut result = match last {
+            Some(frame) if self.layout.is_some() && self.decimator.keep_last(frame) => self.write_row(frame),
+            _ => Ok(()),
+        };
+        result = result.and(self.flush_columns());
         if self.layout.is_some() {
             if self.plan.spec.spatial {
                 result = result.and(self.log_spacetime());

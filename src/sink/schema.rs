@@ -309,7 +309,8 @@ impl RunInfo {
 }
 
 /// Which steps a recording keeps: every step while any segment slips faster than the event
-/// threshold, every `stick_every`-th otherwise, and always the first and the last.
+/// threshold, every `stick_every`-th otherwise, and always the first and the last (at `t_end`,
+/// or the last good step of a run that failed or was interrupted, see [`Decimator::keep_last`]).
 #[derive(Debug, Clone)]
 pub struct Decimator {
     threshold: f64,
@@ -336,6 +337,13 @@ impl Decimator {
         if keep {
             self.last = Some(frame.step);
         }
+        keep
+    }
+
+    /// Whether the run's last frame still has to be recorded (and, if so, remembers it).
+    pub fn keep_last(&mut self, frame: &Frame) -> bool {
+        let keep = self.last != Some(frame.step);
+        self.last = Some(frame.step);
         keep
     }
 }
