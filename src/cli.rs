@@ -3,7 +3,9 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+use signal_hook::consts::{SIGINT, SIGTERM};
 
 use clap::{Args, Parser, Subcommand};
 
@@ -24,7 +26,7 @@ use crate::sink::schema::RecordingPlan;
 pub const EXIT_INVALID: u8 = 2;
 /// Exit code for a failure during the run.
 pub const EXIT_FAILED: u8 = 1;
-/// Exit code after Ctrl-C or SIGTERM (128 + SIGINT).
+/// Exit code after Ctrl-C (128 + SIGINT); SIGTERM gives 143 (128 + SIGTERM).
 pub const EXIT_INTERRUPTED: u8 = 130;
 
 /// Frictional stick-slip with the super/subloading surface friction model: a dynamic finite
@@ -42,7 +44,8 @@ pub enum Command {
     /// Run a case file and write its Rerun recording and event catalog to the output folder.
     ///
     /// Exit codes: 0 success, 1 the run failed (the outputs hold everything up to the last good
-    /// step), 2 invalid input, 130 interrupted (outputs finished up to the last step).
+    /// step), 2 invalid input, 130 interrupted by Ctrl-C (SIGINT), 143 by SIGTERM (outputs
+    /// finished up to the last step in both).
     Run(RunArgs),
     /// Check a recording: the schema's entities, sim_time monotonic and covering the run, no NaN
     /// or Inf, equal row counts, the stored blueprint, and optional expectations.
@@ -208,11 +211,16 @@ fn run_command(args: RunArgs) -> ExitCode {
     if let Some(stream) = stream {
         sinks.push(Box::new(RerunSink::new(stream, plan)));
     }
+    // SIGINT and SIGTERM stop the loop after the current step; the sinks then finish their
+    // files, and the exit code is 128 + the signal's number, as a shell expects. A second
+    // signal while finishing ends the process at once.
     let interrupt = Arc::new(AtomicBool::new(false));
-    {
-        let flag = interrupt.clone();
-        // A second handler cannot be installed in tests that call this twice; that is harmless.
-        let _ = ctrlc::set_handler(move || flag.store(true, std::sync::atomic::Ordering::SeqCst));
+    let signal = Arc::new(AtomicUsize::new(0));
+    for number in [SIGINT, SIGTERM] {
+        // Registering can only fail for signals that cannot be caught; these two can.
+        let _ = signal_hook::flag::register_conditional_shutdown(number, 128 + number, interrupt.clone());
+        let _ = signal_hook::flag::register(number, interrupt.clone());
+        let _ = signal_hook::flag::register_usize(number, signal.clone(), number as usize);
     }
     let outcome = run(
         scene.as_mut(),
@@ -241,14 +249,25 @@ fn run_command(args: RunArgs) -> ExitCode {
             }
             ExitCode::SUCCESS
         }
-        Outcome::Interrupted { steps, .. } => fail(
-            EXIT_INTERRUPTED,
-            format!("interrupted after {steps} steps (t = {} s); outputs finished: {written}", scene.time()),
-        ),
+        Outcome::Interrupted { steps, .. } => {
+            let (code, name) = match signal.load(Ordering::SeqCst) {
+                n if n == SIGTERM as usize => (128 + SIGTERM as u8, "SIGTERM"),
+                _ => (EXIT_INTERRUPTED, "SIGINT"),
+            };
+            fail(
+                code,
+                format!(
+                    "interrupted by {name} after {steps} steps (t = {} s); outputs finished: {written}",
+                    scene.time()
+                ),
+            )
+        }
         Outcome::Failed { error, .. } => {
             fail(EXIT_FAILED, format!("run failed at {error}; outputs hold every step before it: {written}"))
         }
-        Outcome::Sink(error) => fail(EXIT_FAILED, error),
+        Outcome::Sink(error) => {
+            fail(EXIT_FAILED, format!("{error}; the run stopped there, and the other outputs were finished: {written}"))
+        }
     }
 }
 

@@ -90,13 +90,23 @@ pub fn run(
 ) -> Outcome {
     let needs = sinks.iter().fold(options.needs, |n, s| n.union(s.needs()));
     let layout: Layout = scene.layout().clone();
+    // Every sink begins even if one fails (a full disk under one file), so that the others
+    // are finished as valid, empty files of a failed run.
+    let mut begun = Ok(());
     for sink in sinks.iter_mut() {
-        if let Err(e) = sink.begin(&layout) {
-            return Outcome::Sink(e);
+        let result = sink.begin(&layout);
+        if begun.is_ok() {
+            begun = result;
         }
     }
     let detector = EventDetector::new(layout.segments.len(), options.slip_rate_threshold, options.merge_within);
     let mut observers = Observers { sinks, detector, last: None };
+    if let Err(e) = begun {
+        // The initial state is the last good step: the sinks that began keep it.
+        observers.last = Some(scene.frame(needs, 0.0));
+        let _ = observers.finish(Ending::Failed);
+        return Outcome::Sink(e);
+    }
     if let Err(e) = observers.record(scene.frame(needs, 0.0)) {
         let _ = observers.finish(Ending::Failed);
         return Outcome::Sink(e);

@@ -437,25 +437,66 @@ fn stuck_limit_read_from_the_recording_matches_the_closed_form() {
     assert!(checked > 10, "rows after 40 s: {checked}");
 }
 
-#[test]
-fn an_interrupted_run_leaves_a_finished_recording() {
-    let out = scratch("sigint");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_slipfront"))
-        .args(["run", &case_path("paper_triangular"), "--quiet", "--set", "time.t_end=100000", "--out-dir"])
+/// Sends `signal` to a long paper-case run after 3 s and checks the exit code and that the
+/// recording, the MCAP log and the catalog are finished files.
+fn interrupt_with(signal: &str, expected_code: i32) {
+    let out = scratch(&format!("sig{signal}"));
+    let mcap = out.join("run.mcap");
+    let child = Command::new(env!("CARGO_BIN_EXE_slipfront"))
+        .args(["run", &case_path("paper_triangular"), "--quiet", "--set", "time.t_end=100000", "--mcap"])
+        .arg(&mcap)
+        .arg("--out-dir")
         .arg(&out)
+        .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
     std::thread::sleep(std::time::Duration::from_secs(3));
-    let killed = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    let killed = Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap();
     assert!(killed.success());
-    let status = child.wait().unwrap();
-    assert_eq!(status.code(), Some(130), "exit status after SIGINT");
-    let path = out.join("paper_triangular.rrd");
-    let (code, text) = check_cli(&path, None);
-    assert_eq!(code, 0, "{text}");
-    assert!(text.contains("run interrupted"), "{text}");
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(expected_code), "exit status after SIG{signal}: {stderr}");
+    assert!(stderr.contains(&format!("interrupted by SIG{signal} after ")), "{stderr}");
+    for path in [out.join("paper_triangular.rrd"), mcap] {
+        let (code, text) = check_cli(&path, None);
+        assert_eq!(code, 0, "{}: {text}", path.display());
+        assert!(text.contains("run interrupted"), "{}: {text}", path.display());
+    }
     let catalog = std::fs::read_to_string(out.join("paper_triangular.events.csv")).unwrap();
     assert!(catalog.starts_with("segment,onset_s,end_s,"), "the catalog was written");
+}
+
+#[test]
+fn an_interrupted_run_leaves_finished_recordings() {
+    interrupt_with("INT", 130);
+}
+
+#[test]
+fn a_terminated_run_leaves_finished_recordings() {
+    interrupt_with("TERM", 143);
+}
+
+#[test]
+fn a_full_disk_stops_the_run_with_a_clear_error_and_finishes_the_other_outputs() {
+    // /dev/full fails every write with ENOSPC, as a full disk does.
+    for option in ["--mcap", "--events"] {
+        let out = scratch(&format!("full{option}"));
+        let output = Command::new(env!("CARGO_BIN_EXE_slipfront"))
+            .args(["run", &case_path("spring_block"), "--quiet", "--set", "time.t_end=20", option, "/dev/full"])
+            .arg("--out-dir")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "{option}: {stderr}");
+        assert!(stderr.contains("/dev/full") && stderr.contains("No space left on device"), "{option}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{stderr}");
+        let (code, text) = check_cli(&out.join("spring_block.rrd"), None);
+        assert_eq!(code, 0, "{option}: {text}");
+        // Both files fail as they start (their headers are written first), so the recording
+        // keeps the initial state of a failed run.
+        assert!(text.contains("run failed: 1 rows per series up to t = 0 s"), "{option}: {text}");
+    }
 }
 
 #[test]

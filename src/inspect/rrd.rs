@@ -15,8 +15,17 @@ use crate::sink::schema;
 /// yields what came before, with [`Recording::problem`] saying where it stopped.
 pub fn read(path: &Path) -> Result<Recording, ReadError> {
     let file = File::open(path).map_err(|e| ReadError(format!("cannot open {}: {e}", path.display())))?;
-    let decoder = DecoderApp::decode_eager(BufReader::new(file))
-        .map_err(|e| ReadError(format!("{} is not a Rerun recording: {e}", path.display())))?;
+    decode(BufReader::new(file), &path.display().to_string())
+}
+
+/// As [`read`], from the bytes of a recording; `name` stands for the file in messages.
+pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Recording, ReadError> {
+    decode(bytes, name)
+}
+
+fn decode(reader: impl std::io::BufRead, name: &str) -> Result<Recording, ReadError> {
+    let decoder =
+        DecoderApp::decode_eager(reader).map_err(|e| ReadError(format!("{name} is not a Rerun recording: {e}")))?;
     Ok(from_messages(decoder.map(|m| m.map_err(|e| e.to_string()))))
 }
 

@@ -44,19 +44,23 @@ struct Parts {
 /// Reads `path`. Errors only when nothing usable is there (not MCAP, no run header).
 pub fn read(path: &Path) -> Result<Log, ReadError> {
     let bytes = std::fs::read(path).map_err(|e| ReadError(format!("cannot open {}: {e}", path.display())))?;
+    from_bytes(&bytes, &path.display().to_string())
+}
+
+/// As [`read`], from the bytes of a log; `name` stands for the file in messages.
+pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
     if bytes.is_empty() {
-        return Err(ReadError(format!("{} is empty: no MCAP log to read", path.display())));
+        return Err(ReadError(format!("{name} is empty: no MCAP log to read")));
     }
     // The MCAP parser reads untrusted bytes; should it ever panic on them, say so rather than
     // abort.
-    std::panic::catch_unwind(|| decode(&bytes, path)).unwrap_or_else(|_| {
-        Err(ReadError(format!("{}: the MCAP reader failed on damaged data; nothing was recovered", path.display())))
+    std::panic::catch_unwind(|| decode(bytes, name)).unwrap_or_else(|_| {
+        Err(ReadError(format!("{name}: the MCAP reader failed on damaged data; nothing was recovered")))
     })
 }
 
-fn decode(bytes: &[u8], path: &Path) -> Result<Log, ReadError> {
-    let stream = mcap::MessageStream::new(bytes)
-        .map_err(|e| ReadError(format!("{} is not an MCAP file: {e}", path.display())))?;
+fn decode(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
+    let stream = mcap::MessageStream::new(bytes).map_err(|e| ReadError(format!("{name} is not an MCAP file: {e}")))?;
     let mut header: Option<LogHeader> = None;
     let mut parts: BTreeMap<u32, Parts> = BTreeMap::new();
     let mut catalog = Catalog::default();
@@ -142,8 +146,7 @@ fn decode(bytes: &[u8], path: &Path) -> Result<Log, ReadError> {
             format!(" (it holds {:?})", skipped.keys().collect::<Vec<_>>())
         };
         return Err(ReadError(format!(
-            "{} holds no slipfront run header on {}{others}: not a slipfront log, or damaged before it",
-            path.display(),
+            "{name} holds no slipfront run header on {}{others}: not a slipfront log, or damaged before it",
             super::TOPIC_RUN
         )));
     };

@@ -62,12 +62,22 @@ impl McapSink {
         self.sequence = self.sequence.wrapping_add(1);
         let header =
             MessageHeader { channel_id, sequence: self.sequence, log_time: nanos(time), publish_time: nanos(time) };
-        let path = &self.path;
-        self.writer
-            .as_mut()
-            .expect("the writer lives until finish")
-            .write_to_known_channel(&header, data)
-            .map_err(|e| SinkError(format!("cannot write {}: {e}", path.display())))
+        let Some(writer) = self.writer.as_mut() else {
+            return Err(SinkError(format!("{} was abandoned after an earlier write error", self.path.display())));
+        };
+        writer.write_to_known_channel(&header, data).map_err(|e| self.abandon("cannot write", e))
+    }
+
+    /// Gives up the log after a write error (a full disk, say) and says why. The `mcap` writer
+    /// panics if dropped after a failed write (0.25: its `Drop` finishes the file through a
+    /// writer the failure took away), so it is forgotten instead: the bytes already written stay
+    /// a readable log up to the last complete chunk.
+    fn abandon(&mut self, doing: &str, e: mcap::McapError) -> SinkError {
+        if let Some(writer) = self.writer.take() {
+            std::mem::forget(writer);
+        }
+        let cause = std::error::Error::source(&e).map(|s| format!(": {s}")).unwrap_or_default();
+        SinkError(format!("{doing} {}: {e}{cause}", self.path.display()))
     }
 }
 
@@ -145,11 +155,12 @@ impl Sink for McapSink {
         let header = LogHeader { format: mcap_log::FORMAT.into(), plan, layout: layout.clone() };
         let text = toml::to_string(&header).map_err(|e| SinkError(format!("cannot describe the run: {e}")))?;
         let descriptor = proto::file_descriptor_set();
-        let writer = self.writer.as_mut().expect("the writer lives until finish");
-        let error = |e: mcap::McapError| SinkError(format!("cannot write the MCAP log: {e}"));
         for (topic, message) in mcap_log::TOPICS {
-            let schema = writer.add_schema(&proto::full_name(message), "protobuf", &descriptor).map_err(error)?;
-            let channel = writer.add_channel(schema, topic, "protobuf", &BTreeMap::new()).map_err(error)?;
+            let writer = self.writer.as_mut().expect("the writer lives until finish");
+            let channel = writer
+                .add_schema(&proto::full_name(message), "protobuf", &descriptor)
+                .and_then(|schema| writer.add_channel(schema, topic, "protobuf", &BTreeMap::new()));
+            let channel = channel.map_err(|e| self.abandon("cannot write", e))?;
             self.channels.insert(topic, channel);
         }
         self.write(mcap_log::TOPIC_RUN, 0.0, &proto::Run { header: text }.encode_to_vec())
@@ -178,11 +189,12 @@ impl Sink for McapSink {
         let text = toml::to_string(&summary).map_err(|e| SinkError(format!("cannot describe the ending: {e}")))?;
         self.write(mcap_log::TOPIC_ENDING, self.last_time, &proto::Ending { ending: text }.encode_to_vec())?;
         // The summary and chunk indexes are written here; readers that seek need them.
-        let mut writer = self.writer.take().expect("checked above");
-        let path = &self.path;
-        let error = |e: &dyn std::fmt::Display| SinkError(format!("cannot finish {}: {e}", path.display()));
-        writer.finish().map_err(|e| error(&e))?;
-        writer.into_inner().flush().map_err(|e| error(&e))
+        let writer = self.writer.as_mut().expect("checked above");
+        if let Err(e) = writer.finish() {
+            return Err(self.abandon("cannot finish", e));
+        }
+        let writer = self.writer.take().expect("checked above");
+        writer.into_inner().flush().map_err(|e| SinkError(format!("cannot finish {}: {e}", self.path.display())))
     }
 }
 
