@@ -169,6 +169,9 @@ fn run_command(args: RunArgs) -> ExitCode {
         Ok(case) => case,
         Err(e) => return fail(EXIT_INVALID, format!("{}: {e}", args.case.display())),
     };
+    if let Err(e) = fits_in_memory(&case) {
+        return fail(EXIT_INVALID, format!("{}: {e}", args.case.display()));
+    }
     let stem = args.case.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "case".into());
     if let Err(e) = std::fs::create_dir_all(&args.out_dir) {
         return fail(EXIT_INVALID, format!("cannot create output folder {}: {e}", args.out_dir.display()));
@@ -269,6 +272,40 @@ fn run_command(args: RunArgs) -> ExitCode {
             fail(EXIT_FAILED, format!("{error}; the run stopped there, and the other outputs were finished: {written}"))
         }
     }
+}
+
+/// Refuses a block mesh whose estimated memory ([`scene::block::estimated_memory`]) exceeds
+/// what the machine has available (`MemAvailable` of `/proc/meminfo`; no check where that is
+/// unknown).
+fn fits_in_memory(case: &case::Case) -> Result<(), String> {
+    let case::SceneSpec::Block(b) = &case.scene else { return Ok(()) };
+    let (dofs, bytes) = scene::block::estimated_memory(b.nx, b.ny);
+    let Some(available) = available_memory() else { return Ok(()) };
+    if bytes <= available {
+        return Ok(());
+    }
+    Err(format!(
+        "scene.nx × scene.ny = {} × {} is too large: {dofs:.3e} degrees of freedom need about {} of memory, \
+         and {} is available; use a coarser mesh",
+        b.nx,
+        b.ny,
+        human_bytes(bytes),
+        human_bytes(available)
+    ))
+}
+
+/// `MemAvailable` of `/proc/meminfo`, in bytes.
+fn available_memory() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024.0)
+}
+
+fn human_bytes(bytes: f64) -> String {
+    let units = ["B", "kB", "MB", "GB", "TB", "PB", "EB"];
+    let power = ((bytes.max(1.0).log10() / 3.0).floor() as usize).min(units.len() - 1);
+    format!("{:.1} {}", bytes / 1e3f64.powi(power as i32), units[power])
 }
 
 fn check_command(args: CheckArgs) -> ExitCode {

@@ -289,3 +289,77 @@ fn bad_arguments_exit_with_two() {
     let output = binary().args(["launch"]).output().unwrap();
     assert_eq!(output.status.code(), Some(2));
 }
+
+#[test]
+fn hostile_scene_values_name_their_key() {
+    let b = case("paper_triangular.toml");
+    let sb = case("spring_block.toml");
+    let rules: &[(&str, &str, &str)] = &[
+        (&b, "scene.nx=\"ten\"", "scene.nx: invalid type: string \"ten\", expected usize"),
+        (&b, "scene.nx=-1", "scene.nx: invalid value: integer `-1`, expected usize"),
+        (&b, "scene.ny=1.5", "scene.ny: invalid type: floating point `1.5`, expected usize"),
+        (&sb, "scene.mass=[1]", "scene.mass: invalid type: sequence, expected f64"),
+        (&sb, "scene.kind=3", "scene.kind: invalid type: integer, expected a string"),
+        (
+            &sb,
+            "scene.extra=1",
+            "scene.extra: unknown field `extra`, expected one of `mass`, `stiffness`, `velocity`, `normal_traction`",
+        ),
+        (
+            &b,
+            "scene.normal_traction.kind=\"cubic\"",
+            "scene.normal_traction.kind: unknown variant `cubic`, expected one of `uniform`, `linear`, `table`",
+        ),
+        (
+            &b,
+            "scene.normal_traction={kind=\"table\", x=[0, 10], value=[\"a\", 2]}",
+            "scene.normal_traction: invalid type: string \"a\", expected f64",
+        ),
+        (&sb, "time.dt=1e400", "time.dt: invalid type: string \"1e400\", expected f64"),
+        (&sb, "events.x=1", "events.x: unknown field `x`, expected `slip_rate_threshold` or `merge_within`"),
+        (&sb, "friction=3", "friction: invalid type: integer `3`, expected struct FrictionParams"),
+    ];
+    for (path, set, message) in rules {
+        expect_invalid(path, &[set], message);
+    }
+}
+
+#[test]
+fn a_mesh_too_large_for_memory_is_refused_with_an_estimate() {
+    let b = case("paper_triangular.toml");
+    // 2e10 degrees of freedom: about 75 TB by the estimate, more than any machine here has.
+    let (code, stderr) = run_case(&b, &["scene.nx=100000", "scene.ny=100000"]);
+    assert_eq!(code, 2, "{stderr}");
+    for part in ["scene.nx × scene.ny = 100000 × 100000 is too large", "2.000e10 degrees of freedom", "TB of memory"]
+    {
+        assert!(stderr.contains(part), "no {part:?} in {stderr}");
+    }
+    assert!(stderr.contains("is available; use a coarser mesh"), "{stderr}");
+}
+
+#[test]
+fn hostile_files() {
+    let dir = scratch_dir("hostile");
+    let text = std::fs::read_to_string(case("spring_block.toml")).unwrap();
+    let write = |name: &str, contents: &[u8]| {
+        let path = dir.join(name);
+        std::fs::write(&path, contents).unwrap();
+        path.to_str().unwrap().to_owned()
+    };
+    // TOML's own nan and inf literals reach the same finiteness rule as --set.
+    let nan = write("nan.toml", text.replace("mu_s = 0.4", "mu_s = nan").as_bytes());
+    expect_invalid(&nan, &[], "friction.mu_s = NaN must be a finite number");
+    let inf = write("inf.toml", text.replace("mu_s = 0.4", "mu_s = -inf").as_bytes());
+    expect_invalid(&inf, &[], "friction.mu_s = -inf must be a finite number");
+    let empty = write("empty.toml", b"");
+    expect_invalid(&empty, &[], "missing field `friction`");
+    let binary = write("binary.toml", &[0xff, 0xfe, 0x00, 0x80, 0x41]);
+    expect_invalid(&binary, &[], "stream did not contain valid UTF-8");
+    expect_invalid(dir.to_str().unwrap(), &[], "Is a directory");
+    let no_kind = write("no_kind.toml", text.replace("kind = \"spring_block\"", "").as_bytes());
+    expect_invalid(&no_kind, &[], "missing field `kind`");
+    let no_mass = write("no_mass.toml", text.replace("mass = 1000.0", "").as_bytes());
+    expect_invalid(&no_mass, &[], "missing field `mass`");
+    let twice = write("twice.toml", format!("{text}\n[time]\ndt = 1\n").as_bytes());
+    expect_invalid(&twice, &[], "TOML parse error");
+}

@@ -79,9 +79,13 @@ where
     serde_path_to_error::deserialize(deserializer).map_err(|e| {
         let path = e.path().to_string();
         let inner = e.into_inner().to_string();
-        let inner = inner.trim_end();
+        // toml appends "in `key`" lines that repeat the path given in front.
+        let inner: Vec<&str> = inner.trim_end().lines().filter(|l| !l.starts_with("in `")).collect();
+        let inner = inner.join("\n");
         if path == "." || path.is_empty() {
             CaseError::Parse(format!("case: {inner}"))
+        } else if let Some(nested) = inner.strip_prefix(spec::NESTED_KEY) {
+            CaseError::Parse(format!("{path}.{nested}"))
         } else {
             CaseError::Parse(format!("{path}: {inner}"))
         }

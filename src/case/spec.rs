@@ -15,6 +15,7 @@ pub struct Case {
     /// Time span and integrator.
     pub time: TimeSpec,
     /// What is simulated.
+    #[serde(deserialize_with = "scene_spec")]
     pub scene: SceneSpec,
     /// The event catalog.
     #[serde(default)]
@@ -91,9 +92,48 @@ impl TimeSpec {
     }
 }
 
-/// `[scene]`, chosen by `kind`.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
+/// Marks an error from inside `[scene]` whose message starts with its own key path, so that
+/// the case's error says `scene.nx: ...` (see [`crate::case`]).
+pub(crate) const NESTED_KEY: char = '\u{1f}';
+
+/// Reads `[scene]` through its own path tracker: serde's internally tagged enums buffer their
+/// content and would report every error inside the table at `scene`, without the key.
+fn scene_spec<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<SceneSpec, D::Error> {
+    use serde::de::Error;
+    let mut table = toml::Table::deserialize(deserializer)?;
+    let kind = match table.remove("kind") {
+        Some(toml::Value::String(kind)) => kind,
+        Some(other) => {
+            return Err(D::Error::custom(format!(
+                "{NESTED_KEY}kind: invalid type: {}, expected a string",
+                other.type_str()
+            )));
+        }
+        None => return Err(D::Error::missing_field("kind")),
+    };
+    let tracked = |table: toml::Table| {
+        fn read<T: serde::de::DeserializeOwned>(table: toml::Table) -> Result<T, String> {
+            serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
+                let path = e.path().to_string();
+                let inner = e.into_inner().to_string();
+                let inner = inner.trim_end().to_owned();
+                if path == "." || path.is_empty() { inner } else { format!("{NESTED_KEY}{path}: {inner}") }
+            })
+        }
+        match kind.as_str() {
+            "point" => read(table).map(SceneSpec::Point),
+            "spring_block" => read(table).map(SceneSpec::SpringBlock),
+            "block" => read(table).map(SceneSpec::Block),
+            other => Err(format!(
+                "{NESTED_KEY}kind: unknown variant `{other}`, expected one of `point`, `spring_block`, `block`"
+            )),
+        }
+    };
+    tracked(table).map_err(D::Error::custom)
+}
+
+/// `[scene]`, chosen by `kind` (read by [`scene_spec`]).
+#[derive(Debug, Clone)]
 pub enum SceneSpec {
     /// One contact point under a prescribed relative sliding velocity history.
     Point(PointSpec),
