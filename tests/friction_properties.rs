@@ -1,0 +1,153 @@
+//! Property tests of the friction update (issue 7): random parameters, states and increments.
+//!
+//! - Invariants: an update either returns a state with `R ∈ [0, 1]`, `1/R* ∈ [1, μ_s/μ_k]`,
+//!   finite traction and `Δp ≥ 0`, or says the step is too large; it never returns a state
+//!   outside the bounds, NaN or a panic.
+//! - Symmetry: the law is isotropic along the contact, so reversing the traction and the
+//!   increment reverses the result exactly (bit for bit).
+//! - Consistency: the returned tangents `∂f_t/∂Δū` and `∂(1/R*)/∂Δū` match central finite
+//!   differences of the update itself wherever the update is smooth in `Δū`.
+
+use proptest::prelude::*;
+use slipfront::friction::{ContactState, FrictionError, FrictionParams, RStarLaw, update};
+
+/// Log-uniform in `[lo, hi]`.
+fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+    (lo.ln()..=hi.ln()).prop_map(f64::exp)
+}
+
+fn params() -> impl Strategy<Value = FrictionParams> {
+    (
+        (0.05..0.6f64, log_uniform(1e-6, 2.0)),
+        (log_uniform(1e3, 1e10), log_uniform(0.1, 1e3), prop_oneof![Just(0.0), log_uniform(1e-3, 100.0)]),
+        (0.3..3.0f64, prop_oneof![Just(0.0), log_uniform(1e-4, 10.0)], 0.3..3.0f64),
+        any::<bool>(),
+    )
+        .prop_map(|((mu_k, excess), (alpha_t, r, kappa), (m, xi, n), eq4)| FrictionParams {
+            mu_s: mu_k * (1.0 + excess),
+            mu_k,
+            alpha_n: alpha_t,
+            alpha_t,
+            r,
+            kappa,
+            m,
+            xi,
+            n,
+            structure0: 1.0,
+            f0: 0.0,
+            rstar_law: if eq4 { RStarLaw::Eq4 } else { RStarLaw::Consistent },
+        })
+}
+
+/// Parameters, a state on or inside the subloading surface, an increment and a step.
+fn scenario() -> impl Strategy<Value = (FrictionParams, ContactState, f64, f64)> {
+    params().prop_flat_map(|p| {
+        let max = p.max_structure();
+        (
+            Just(p),
+            log_uniform(1e-3, 1e6),
+            0.0..=1.0f64,
+            0.0..=1.0f64,
+            any::<bool>(),
+            -20.0..20.0f64,
+            log_uniform(1e-5, 10.0),
+        )
+            .prop_map(move |(p, traction_n, ratio, structure_fraction, negative, increment, dt)| {
+                let structure = 1.0 + structure_fraction * (max - 1.0);
+                let sign = if negative { -1.0 } else { 1.0 };
+                let traction_t = sign * ratio * p.mu_k * traction_n * structure;
+                let state = ContactState { traction_t, traction_n, structure, plastic_slip: 0.0 };
+                // Increments measured in elastic slips to the superloading surface.
+                let slip_increment = increment * p.mu_k * traction_n * structure / p.alpha_t;
+                (p, state, slip_increment, dt)
+            })
+    })
+}
+
+fn admissible(p: &FrictionParams, s: &ContactState) -> Result<(), String> {
+    let ratio = s.sliding_ratio(p);
+    if !s.traction_t.is_finite() || !s.structure.is_finite() || !s.plastic_slip.is_finite() {
+        return Err(format!("not finite: {s:?}"));
+    }
+    if !(0.0..=1.0 + 1e-9).contains(&ratio) {
+        return Err(format!("R = {ratio} outside [0, 1]: {s:?}"));
+    }
+    if !(1.0 - 1e-12..=p.max_structure() * (1.0 + 1e-12)).contains(&s.structure) {
+        return Err(format!("1/R* = {} outside [1, {}]", s.structure, p.max_structure()));
+    }
+    Ok(())
+}
+
+fn mirrored(s: &ContactState) -> ContactState {
+    ContactState { traction_t: -s.traction_t, ..*s }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 4000, ..ProptestConfig::default() })]
+
+    #[test]
+    fn updates_keep_the_invariants_or_say_the_step_is_too_large((p, state, du, dt) in scenario()) {
+        match update(&p, &state, du, dt) {
+            Ok(u) => {
+                prop_assert!(admissible(&p, &u.state).is_ok(), "{:?} -> {:?}", (du, dt, state), admissible(&p, &u.state));
+                prop_assert!(u.plastic_increment >= 0.0 && u.plastic_increment.is_finite());
+                prop_assert!(u.state.plastic_slip >= state.plastic_slip);
+                // -α_t h/(α_t + h) with α_t + h > 0 at the root the update takes (the first from
+                // Δp = 0): at least -α_t, positive where the decay of 1/R* softens faster than
+                // R hardens (the instability behind stick-slip).
+                prop_assert!(u.tangent.is_finite() && u.tangent >= -p.alpha_t * (1.0 + 1e-12),
+                    "tangent {} for α_t {}", u.tangent, p.alpha_t);
+                prop_assert!(u.structure_tangent.is_finite());
+            }
+            Err(FrictionError::StructureOutOfRange { .. }) => {}
+            Err(e) => prop_assert!(false, "unexpected error {e} for {:?}", (p, state, du, dt)),
+        }
+    }
+
+    #[test]
+    fn reversing_traction_and_increment_mirrors_the_update_exactly((p, state, du, dt) in scenario()) {
+        let forward = update(&p, &state, du, dt);
+        let backward = update(&p, &mirrored(&state), -du, dt);
+        match (forward, backward) {
+            (Ok(f), Ok(b)) => {
+                // Exact equality (0 and -0 compare equal).
+                prop_assert_eq!(f.state.traction_t, -b.state.traction_t);
+                prop_assert_eq!(f.state.structure, b.state.structure);
+                prop_assert_eq!(f.plastic_increment, b.plastic_increment);
+                prop_assert_eq!(f.tangent, b.tangent);
+                prop_assert_eq!(f.structure_tangent, -b.structure_tangent);
+            }
+            (Err(f), Err(b)) => prop_assert_eq!(f.to_string(), b.to_string()),
+            (f, b) => prop_assert!(false, "{f:?} vs {b:?}"),
+        }
+    }
+
+    #[test]
+    fn the_tangent_matches_finite_differences((p, state, du, dt) in scenario()) {
+        let Ok(u) = update(&p, &state, du, dt) else { return Ok(()) };
+        let h = 1e-5 * du.abs().max(1e-3 * p.mu_k * state.traction_n / p.alpha_t);
+        let (Ok(plus), Ok(minus)) = (update(&p, &state, du + h, dt), update(&p, &state, du - h, dt)) else {
+            return Ok(());
+        };
+        // Central differences only where the update is smooth in Δū: the same regime (stick or
+        // slip) on both sides, and no sign change of f_t in between.
+        let same_regime = (plus.plastic_increment > 0.0) == (minus.plastic_increment > 0.0)
+            && (u.plastic_increment > 0.0) == (plus.plastic_increment > 0.0);
+        let same_sign = plus.state.traction_t.signum() == minus.state.traction_t.signum();
+        prop_assume!(same_regime && same_sign);
+        // The regime boundary itself (R reaching the elastic limit) is a kink; stay off it.
+        prop_assume!(plus.plastic_increment == 0.0 || minus.plastic_increment > 1e-3 * plus.plastic_increment);
+        // Each difference carries the rounding of its values, a few ulps of their size over 2h.
+        let rounding = |a: f64, b: f64| 16.0 * f64::EPSILON * a.abs().max(b.abs()) / (2.0 * h);
+        let fd = (plus.state.traction_t - minus.state.traction_t) / (2.0 * h);
+        let scale = p.alpha_t;
+        let tolerance = 1e-8 * scale + 1e-4 * fd.abs() + rounding(plus.state.traction_t, minus.state.traction_t);
+        prop_assert!((u.tangent - fd).abs() <= tolerance,
+            "tangent {} vs finite difference {fd} (α_t {scale})", u.tangent);
+        let fd_structure = (plus.state.structure - minus.state.structure) / (2.0 * h);
+        let structure_scale = (p.max_structure() - 1.0) / (p.mu_k * state.traction_n / p.alpha_t).max(h);
+        let tolerance = 1e-8 * structure_scale + 1e-4 * fd_structure.abs() + rounding(plus.state.structure, minus.state.structure);
+        prop_assert!((u.structure_tangent - fd_structure).abs() <= tolerance,
+            "structure tangent {} vs finite difference {fd_structure}", u.structure_tangent);
+    }
+}
