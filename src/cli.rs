@@ -238,10 +238,15 @@ fn run_command(args: RunArgs) -> ExitCode {
     }
     let written = outputs.join(", ");
     match outcome {
-        Outcome::Completed { steps, wall, catalog } => {
+        Outcome::Completed { steps, rejected, wall, catalog } => {
             if !args.quiet {
+                let rejected = if case.time.tolerance.is_some() {
+                    format!(" (adaptive, {rejected} rejected)")
+                } else {
+                    String::new()
+                };
                 println!(
-                    "slipfront: {} ({}): {steps} steps to t = {} s in {:.2} s; {} slip events, {} ruptures: {written}",
+                    "slipfront: {} ({}): {steps} steps{rejected} to t = {} s in {:.2} s; {} slip events, {} ruptures: {written}",
                     args.case.display(),
                     case.scene.kind(),
                     case.time.t_end,

@@ -226,3 +226,72 @@ fn write_png(path: &Path, pixels: &[u8]) -> Result<(), String> {
 fn draw_error(e: impl std::fmt::Display) -> String {
     format!("cannot draw the figure: {e}")
 }
+
+/// One curve of a work-precision plot: `(wall time s, error)` points in order of effort.
+pub struct WorkPrecisionCurve {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// Writes a log-log plot of error against wall time, one panel per `(title, curves)`.
+pub fn plot_work_precision(path: &Path, panels: &[(String, Vec<WorkPrecisionCurve>)]) -> Result<(), String> {
+    register_font();
+    const COLOURS: [RGBColor; 6] = [
+        RGBColor(31, 119, 180),
+        RGBColor(214, 39, 40),
+        RGBColor(44, 160, 44),
+        RGBColor(148, 103, 189),
+        RGBColor(255, 127, 14),
+        RGBColor(23, 190, 207),
+    ];
+    let mut pixels = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut pixels, (WIDTH, HEIGHT)).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_error)?;
+        let areas = root.split_evenly((1, panels.len().max(1)));
+        for ((title, curves), area) in panels.iter().zip(areas) {
+            let finite = |p: &&(f64, f64)| p.0 > 0.0 && p.1 > 0.0 && p.0.is_finite() && p.1.is_finite();
+            let all: Vec<(f64, f64)> = curves.iter().flat_map(|c| c.points.iter().filter(finite).copied()).collect();
+            let range = |values: &mut dyn Iterator<Item = f64>| {
+                let (lo, hi) = values.fold((f64::INFINITY, 0.0_f64), |(a, b), v| (a.min(v), b.max(v)));
+                if lo.is_finite() && hi > lo { (lo / 2.0, hi * 2.0) } else { (1e-3, 1.0) }
+            };
+            let (x0, x1) = range(&mut all.iter().map(|p| p.0));
+            let (y0, y1) = range(&mut all.iter().map(|p| p.1));
+            let mut chart = ChartBuilder::on(&area)
+                .caption(title.as_str(), ("sans-serif", 22))
+                .margin(12)
+                .x_label_area_size(45)
+                .y_label_area_size(80)
+                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                .map_err(draw_error)?;
+            chart
+                .configure_mesh()
+                .x_desc("wall time (s), median")
+                .y_desc("relative error")
+                .label_style(("sans-serif", 15))
+                .draw()
+                .map_err(draw_error)?;
+            for (i, curve) in curves.iter().enumerate() {
+                let colour = COLOURS[i % COLOURS.len()];
+                let points: Vec<(f64, f64)> = curve.points.iter().filter(finite).copied().collect();
+                chart
+                    .draw_series(LineSeries::new(points.iter().copied(), colour.stroke_width(2)))
+                    .map_err(draw_error)?
+                    .label(curve.label.clone())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3)));
+                chart.draw_series(points.iter().map(|&p| Circle::new(p, 4, colour.filled()))).map_err(draw_error)?;
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperRight)
+                .background_style(WHITE.mix(0.8))
+                .border_style(BLACK)
+                .label_font(("sans-serif", 14))
+                .draw()
+                .map_err(draw_error)?;
+        }
+        root.present().map_err(draw_error)?;
+    }
+    write_png(path, &pixels)
+}

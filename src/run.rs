@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::case::{Case, TimeSpec};
+use crate::dynamics::StepControl;
 use crate::scene::{Frame, Layout, Needs, RunError, Scene};
 use crate::sink::events::{Catalog, EventDetector};
 use crate::sink::{Ending, Sink, SinkError};
@@ -14,8 +15,8 @@ use crate::sink::{Ending, Sink, SinkError};
 /// How a run ended. Every variant but `Sink` comes with the catalog up to the last good step.
 #[derive(Debug)]
 pub enum Outcome {
-    /// All steps done.
-    Completed { steps: u64, wall: Duration, catalog: Catalog },
+    /// All steps done: `steps` taken, and with adaptive stepping `rejected` attempts besides.
+    Completed { steps: u64, rejected: u64, wall: Duration, catalog: Catalog },
     /// Stopped at a signal after `steps` steps; the sinks were finished.
     Interrupted { steps: u64, catalog: Catalog },
     /// A step failed; the sinks were finished with everything up to the last good step.
@@ -114,47 +115,71 @@ pub fn run(
 
     let steps = time.steps();
     let start = Instant::now();
-    let bar = ProgressBar::with_draw_target(Some(steps), ProgressDrawTarget::hidden());
+    // Progress in thousandths of the simulated span, so that fixed and adaptive steps show alike.
+    let bar = ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::hidden());
     bar.set_style(
-        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} steps, t = {msg} s, eta {eta}")
+        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {msg}, eta {eta}")
             .expect("a valid template")
             .progress_chars("=> "),
     );
+    let mut control =
+        time.tolerance.map(|tolerance| StepControl::new(tolerance, time.dt, time.dt_max(), time.dt_min()));
     let mut shown = false;
-    for k in 1..=steps {
+    let mut k: u64 = 0;
+    loop {
+        let done = match &control {
+            Some(_) => time.t_end - scene.time() <= 1e-9 * time.dt,
+            None => k == steps,
+        };
+        if done {
+            break;
+        }
         if options.interrupt.is_some_and(|flag| flag.load(Ordering::SeqCst)) {
             bar.finish_and_clear();
             return match observers.finish(Ending::Interrupted) {
-                Ok(catalog) => Outcome::Interrupted { steps: k - 1, catalog },
+                Ok(catalog) => Outcome::Interrupted { steps: k, catalog },
                 Err(e) => Outcome::Sink(e),
             };
         }
-        let target = if k == steps { time.t_end } else { k as f64 * time.dt };
-        let dt = target - scene.time();
-        if let Err(error) = scene.advance(dt) {
-            bar.finish_and_clear();
-            return match observers.finish(Ending::Failed) {
-                Ok(catalog) => Outcome::Failed { error, catalog },
-                Err(e) => Outcome::Sink(e),
-            };
-        }
+        k += 1;
+        let advanced = match &mut control {
+            Some(control) => scene.advance_adaptive(control, time.t_end - scene.time()),
+            None => {
+                // Step ends at k dt exactly (no drift), the last one at t_end.
+                let target = if k == steps { time.t_end } else { k as f64 * time.dt };
+                let dt = target - scene.time();
+                scene.advance(dt).map(|()| dt)
+            }
+        };
+        let dt = match advanced {
+            Ok(dt) => dt,
+            Err(error) => {
+                bar.finish_and_clear();
+                return match observers.finish(Ending::Failed) {
+                    Ok(catalog) => Outcome::Failed { error, catalog },
+                    Err(e) => Outcome::Sink(e),
+                };
+            }
+        };
         if let Err(e) = observers.record(scene.frame(needs, dt)) {
             bar.finish_and_clear();
             let _ = observers.finish(Ending::Failed);
             return Outcome::Sink(e);
         }
-        if options.progress && k % 64 == 0 {
+        if options.progress && k.is_multiple_of(64) {
             if !shown && start.elapsed() > Duration::from_secs(1) {
                 bar.set_draw_target(ProgressDrawTarget::stderr());
                 shown = true;
             }
-            bar.set_position(k);
-            bar.set_message(format!("{:.1}", scene.time()));
+            bar.set_position((1000.0 * scene.time() / time.t_end) as u64);
+            bar.set_message(format!("t = {:.1} of {} s, step {k}", scene.time(), time.t_end));
         }
     }
+    let steps = k;
+    let rejected = control.as_ref().map_or(0, |c| c.rejected);
     bar.finish_and_clear();
     match observers.finish(Ending::Completed) {
-        Ok(catalog) => Outcome::Completed { steps, wall: start.elapsed(), catalog },
+        Ok(catalog) => Outcome::Completed { steps, rejected, wall: start.elapsed(), catalog },
         Err(e) => Outcome::Sink(e),
     }
 }

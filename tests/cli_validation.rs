@@ -82,6 +82,23 @@ fn time_rules() {
     );
     expect_invalid(
         &c,
+        &["time.tolerance=0"],
+        "time.tolerance = 0 must lie in (0, 0.1] (a relative local error per second, 1/s)",
+    );
+    expect_invalid(&c, &["time.tolerance=nan"], "time.tolerance = NaN must be a finite number");
+    expect_invalid(&c, &["time.dt_max=1"], "time.dt_max = 1 only applies to adaptive stepping: set time.tolerance too");
+    expect_invalid(
+        &c,
+        &["time.tolerance=1e-6", "time.dt_max=5000"],
+        "time.dt_max = 5000 must lie in (0, time.t_end = 1000]",
+    );
+    expect_invalid(
+        &case("point_loading.toml"),
+        &["time.tolerance=1e-6"],
+        "time.tolerance = 0.000001 is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
+    );
+    expect_invalid(
+        &c,
         &["time.theta=1.2"],
         "time.theta = 1.2 must lie in [1.37, 3] (Wilson's method is unconditionally stable for θ ≥ 1.37)",
     );

@@ -140,12 +140,9 @@ impl Ode {
     }
 }
 
-#[test]
-fn first_slip_onset_agrees_with_an_independent_adaptive_solution() {
-    let case = case_with(&["time.t_end=800", "time.dt=0.005"]);
-    let (events, _) = run(&case);
-    let onset = events.first().expect("a slip before 800 s").onset;
-    let ode = Ode {
+/// The shipped case's ODEs.
+fn shipped_ode() -> Ode {
+    Ode {
         mu_s: 0.4,
         mu_k: 0.2,
         alpha: 1e6,
@@ -156,7 +153,15 @@ fn first_slip_onset_agrees_with_an_independent_adaptive_solution() {
         k: 500.0,
         v: 1e-3,
         f_n: 1000.0,
-    };
+    }
+}
+
+#[test]
+fn first_slip_onset_agrees_with_an_independent_adaptive_solution() {
+    let case = case_with(&["time.t_end=800", "time.dt=0.005"]);
+    let (events, _) = run(&case);
+    let onset = events.first().expect("a slip before 800 s").onset;
+    let ode = shipped_ode();
     let reference = ode.first_onset(1e-7, case.slip_rate_threshold(), 1e-10);
     let tighter = ode.first_onset(1e-7, case.slip_rate_threshold(), 1e-11);
     assert!((reference - tighter).abs() < 1e-6 * reference, "the reference converged: {reference} vs {tighter}");
@@ -196,4 +201,20 @@ fn reversing_the_drive_mirrors_the_traction_exactly() {
         assert_eq!(*xa, -xb);
         assert_eq!(*fa, -fb, "t = {ta}");
     }
+}
+
+#[test]
+fn adaptive_steps_converge_to_the_independent_onset_as_the_tolerance_tightens() {
+    let reference = shipped_ode().first_onset(1e-7, case_with(&[]).slip_rate_threshold(), 1e-10);
+    let mut errors = Vec::new();
+    for tolerance in ["1e-5", "1e-6", "1e-7"] {
+        let case = case_with(&["time.t_end=800", &format!("time.tolerance={tolerance}")]);
+        let (catalog, _) = slipfront::ensemble::catalog(&case).unwrap();
+        let onset = catalog.events.first().expect("a slip before 800 s").onset;
+        let relative = (onset - reference).abs() / reference;
+        println!("tolerance {tolerance}: onset {onset} s, reference {reference} s, relative {relative:e}");
+        errors.push(relative);
+    }
+    assert!(errors[2] < errors[0], "the error shrinks with the tolerance: {errors:?}");
+    assert!(errors[2] < 1e-4, "tolerance 1e-7: relative onset error {:e}", errors[2]);
 }

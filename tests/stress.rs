@@ -242,7 +242,11 @@ fn long_stress_rows() {
         (PAPER, &["friction.m=2", "friction.n=0.5"]),
         (PAPER, &["friction.m=0.5", "friction.n=2"]),
         (PAPER, &["time.dt=1e-5", "time.t_end=10"]),
-        (SPRING, &["time.t_end=1e6", "time.dt=1"]),
-        (PAPER, &["time.t_end=1e6", "time.dt=10"]),
+        // 1e6 s of the spring block: 1e7 steps of 0.1 s, about 130 stick-slip cycles.
+        (SPRING, &["time.t_end=1e6", "time.dt=0.1"]),
     ]);
+    // 1e6 s of the paper case at dt = 0.1 s: the energy the integrator creates in each slip
+    // adds up to 1 % of the work by about 4140 s, where the energy check stops the run and
+    // names time.dt (at dt = 0.01 s the same span is 1e8 steps, about two hours here).
+    refused(PAPER, &["time.t_end=1e6", "time.dt=0.1"], "time.dt", 45_000);
 }

@@ -101,6 +101,13 @@ impl Case {
         all.extend(friction.violations);
         let mut time = Checker::new("time");
         self.time.check(&mut time);
+        if let (Some(tolerance), SceneSpec::Point(_)) = (self.time.tolerance, &self.scene) {
+            time.fail(
+                "tolerance",
+                tolerance,
+                "is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
+            );
+        }
         all.extend(time.violations);
         let mut scene = Checker::new("scene");
         self.scene.check(&mut scene);

@@ -43,6 +43,14 @@ pub struct TimeSpec {
     /// as too coarse (-); 0.01 by default.
     #[serde(default = "default_energy_tolerance")]
     pub energy_tolerance: f64,
+    /// Local error per second of simulated time (1/s) of adaptive stepping by step doubling;
+    /// unset (the default): fixed steps of `dt`. When set, `dt` is the first step. See
+    /// [`crate::dynamics::adaptive`].
+    #[serde(default)]
+    pub tolerance: Option<f64>,
+    /// Largest adaptive step (s); `t_end / 100` by default.
+    #[serde(default)]
+    pub dt_max: Option<f64>,
 }
 
 fn default_theta() -> f64 {
@@ -68,6 +76,19 @@ impl TimeSpec {
             );
         }
         c.positive("energy_tolerance", self.energy_tolerance);
+        if let Some(tolerance) = self.tolerance
+            && c.finite("tolerance", tolerance)
+            && !(tolerance > 0.0 && tolerance <= 0.1)
+        {
+            c.fail("tolerance", tolerance, "must lie in (0, 0.1] (a relative local error per second, 1/s)");
+        }
+        if let Some(dt_max) = self.dt_max {
+            if self.tolerance.is_none() {
+                c.fail("dt_max", dt_max, format!("only applies to adaptive stepping: set {} too", c.key("tolerance")));
+            } else if c.finite("dt_max", dt_max) && !(dt_max > 0.0 && dt_max <= self.t_end) {
+                c.fail("dt_max", dt_max, format!("must lie in (0, {} = {}]", c.key("t_end"), self.t_end));
+            }
+        }
         if self.t_end.is_finite() && self.dt.is_finite() && self.dt > 0.0 && self.t_end > 0.0 {
             if self.dt > self.t_end {
                 c.fail("dt", self.dt, format!("must not exceed {} = {}", c.key("t_end"), self.t_end));
@@ -84,6 +105,16 @@ impl TimeSpec {
                 );
             }
         }
+    }
+
+    /// Largest adaptive step (s).
+    pub fn dt_max(&self) -> f64 {
+        self.dt_max.unwrap_or(self.t_end / 100.0)
+    }
+
+    /// Smallest adaptive step (s): below this a run stops rather than crawl.
+    pub fn dt_min(&self) -> f64 {
+        self.t_end / MAX_STEPS
     }
 
     /// Number of steps: `t_end/dt` rounded up; the last step is shortened to end at `t_end`.

@@ -1,10 +1,12 @@
 //! Time integration of a linear elastic body with a frictional contact boundary (paper §2.2).
 
+pub mod adaptive;
 pub mod body;
 pub mod contact;
 pub mod sparse;
 pub mod wilson;
 
+pub use adaptive::{AdaptiveError, StepControl};
 pub use body::LinearBody;
 pub use contact::{ContactBoundary, ContactPoint};
 pub use wilson::{Dynamics, EnergyLedger, State, StepError, WilsonSettings};

@@ -119,7 +119,7 @@ pub const MAX_HALVINGS: u32 = 10;
 
 impl StepError {
     /// Whether a shorter step may succeed where this one failed.
-    fn cured_by_shorter_steps(&self) -> bool {
+    pub(crate) fn cured_by_shorter_steps(&self) -> bool {
         matches!(
             self,
             StepError::NotConverged { .. }
@@ -184,6 +184,14 @@ pub struct Dynamics {
     /// energy check uses before much work has been done.
     energy_scale: f64,
     split_steps: u64,
+}
+
+/// A saved state of [`Dynamics`] (see [`Dynamics::snapshot`]).
+#[derive(Clone)]
+pub(crate) struct Snapshot {
+    pub(crate) state: State,
+    ledger: Option<EnergyLedger>,
+    imbalance: f64,
 }
 
 /// What the Newton loop evaluates at a trial `u_θ`.
@@ -299,14 +307,39 @@ impl Dynamics {
         match self.try_step(dt) {
             Err(e) if depth < MAX_HALVINGS && e.cured_by_shorter_steps() => {
                 self.split_steps += 1;
-                self.step_halving(0.5 * dt, depth + 1)?;
-                self.step_halving(0.5 * dt, depth + 1)?;
-                // The two halves count as one step of the caller's.
-                self.state.step -= 1;
-                Ok(())
+                self.two_halves(dt, |d, half| d.step_halving(half, depth + 1))
             }
             result => result,
         }
+    }
+
+    /// Advances by `dt` as two steps of `dt/2` taken by `half_step`, reported as one step: the
+    /// step counter moves by one and `plastic_increment` holds the slip of both halves.
+    pub(crate) fn two_halves(
+        &mut self,
+        dt: f64,
+        mut half_step: impl FnMut(&mut Self, f64) -> Result<(), StepError>,
+    ) -> Result<(), StepError> {
+        half_step(self, 0.5 * dt)?;
+        let first = self.state.plastic_increment.clone();
+        half_step(self, 0.5 * dt)?;
+        for (p, f) in self.state.plastic_increment.iter_mut().zip(first) {
+            *p += f;
+        }
+        self.state.step -= 1;
+        Ok(())
+    }
+
+    /// Everything a step changes, to undo a trial step.
+    pub(crate) fn snapshot(&self) -> Snapshot {
+        Snapshot { state: self.state.clone(), ledger: self.ledger, imbalance: self.imbalance }
+    }
+
+    /// Returns to `snapshot`.
+    pub(crate) fn restore(&mut self, snapshot: Snapshot) {
+        self.state = snapshot.state;
+        self.ledger = snapshot.ledger;
+        self.imbalance = snapshot.imbalance;
     }
 
     fn try_step(&mut self, dt: f64) -> Result<(), StepError> {

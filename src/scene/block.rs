@@ -2,11 +2,11 @@
 //! frictional contact against a moving rigid base.
 
 use super::{
-    Frame, Layout, Needs, NodeInfo, RunError, Scene, SceneKind, SegmentInfo, advance_dynamics, segment_sample,
-    step_error,
+    Frame, Layout, Needs, NodeInfo, RunError, Scene, SceneKind, SegmentInfo, advance_dynamics,
+    advance_dynamics_adaptive, segment_sample, step_error,
 };
 use crate::case::{BlockSpec, Case};
-use crate::dynamics::{Dynamics, WilsonSettings};
+use crate::dynamics::{Dynamics, StepControl, WilsonSettings};
 use crate::fem::{Block, PlaneStrain, StructuredMesh, assemble};
 
 /// Peak memory (bytes) a block of `nx × ny` elements is expected to need: a base of 16 MB plus
@@ -95,6 +95,10 @@ impl Scene for BlockScene {
 
     fn advance(&mut self, dt: f64) -> Result<(), RunError> {
         advance_dynamics(&mut self.dynamics, dt, |p| p / 2)
+    }
+
+    fn advance_adaptive(&mut self, control: &mut StepControl, limit: f64) -> Result<f64, RunError> {
+        advance_dynamics_adaptive(&mut self.dynamics, control, limit, |p| p / 2)
     }
 
     fn frame(&self, needs: Needs, dt: f64) -> Frame {

@@ -10,7 +10,7 @@ use std::fmt;
 use serde::{Deserialize, Serialize};
 
 use crate::case::{Case, SceneSpec};
-use crate::dynamics::StepError;
+use crate::dynamics::{AdaptiveError, StepControl, StepError};
 use crate::friction::{ContactState, FrictionError, FrictionParams};
 
 /// What the sinks of a run need in each frame.
@@ -172,6 +172,11 @@ pub trait Scene {
     fn time(&self) -> f64;
     /// Advances by `dt`.
     fn advance(&mut self, dt: f64) -> Result<(), RunError>;
+    /// Advances by one step of at most `limit` (s) chosen by `control`; returns the step taken.
+    /// Scenes without dynamics (the point scene) take `limit` whole.
+    fn advance_adaptive(&mut self, _control: &mut StepControl, limit: f64) -> Result<f64, RunError> {
+        self.advance(limit).map(|()| limit)
+    }
     /// Describes the current state; `dt` is the step just taken.
     fn frame(&self, needs: Needs, dt: f64) -> Frame;
 }
@@ -228,6 +233,21 @@ pub fn advance_dynamics(
 ) -> Result<(), RunError> {
     let (step, time) = (dynamics.state.step + 1, dynamics.state.time);
     dynamics.step(dt).map_err(|e| step_error(e, step, time, segment_of_point))
+}
+
+/// One adaptive step of `dynamics` ([`crate::dynamics::adaptive`]), with failures as in
+/// [`advance_dynamics`].
+pub fn advance_dynamics_adaptive(
+    dynamics: &mut crate::dynamics::Dynamics,
+    control: &mut StepControl,
+    limit: f64,
+    segment_of_point: impl Fn(usize) -> usize,
+) -> Result<f64, RunError> {
+    let (step, time) = (dynamics.state.step + 1, dynamics.state.time);
+    dynamics.adaptive_step(control, limit).map_err(|e| match e {
+        AdaptiveError::Step(e) => step_error(e, step, time, segment_of_point),
+        e @ AdaptiveError::StepTooSmall { .. } => RunError { step, time, segment: None, message: e.to_string() },
+    })
 }
 
 /// Turns a dynamic step failure into a [`RunError`] for the scene's segment numbering.

@@ -2,11 +2,12 @@
 //! whose far end moves at a constant velocity (Ozaki & Hashiguchi 2010).
 
 use super::{
-    Frame, Layout, Needs, RunError, Scene, SceneKind, SegmentInfo, advance_dynamics, segment_sample, step_error,
+    Frame, Layout, Needs, RunError, Scene, SceneKind, SegmentInfo, advance_dynamics, advance_dynamics_adaptive,
+    segment_sample, step_error,
 };
 use crate::case::{Case, SpringBlockSpec};
 use crate::dynamics::sparse::SymmetricMatrix;
-use crate::dynamics::{ContactBoundary, ContactPoint, Dynamics, LinearBody, WilsonSettings};
+use crate::dynamics::{ContactBoundary, ContactPoint, Dynamics, LinearBody, StepControl, WilsonSettings};
 
 /// `M ẍ + k x = k v t + f_t` per unit contact area, over a fixed base. It is the one-degree-of-
 /// freedom case of the block's equation of motion and is integrated by the same [`Dynamics`].
@@ -71,6 +72,10 @@ impl Scene for SpringBlockScene {
 
     fn advance(&mut self, dt: f64) -> Result<(), RunError> {
         advance_dynamics(&mut self.dynamics, dt, |_| 0)
+    }
+
+    fn advance_adaptive(&mut self, control: &mut StepControl, limit: f64) -> Result<f64, RunError> {
+        advance_dynamics_adaptive(&mut self.dynamics, control, limit, |_| 0)
     }
 
     fn frame(&self, needs: Needs, dt: f64) -> Frame {

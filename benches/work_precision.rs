@@ -1,0 +1,305 @@
+//! Work-precision benchmark (issue 6): error against wall time for the spring-block and the
+//! paper case, across step sizes (fixed Wilson-θ) and tolerances (adaptive Wilson-θ by step
+//! doubling).
+//!
+//! `cargo bench --bench work_precision` writes `recordings/bench/work_precision.md` (the table)
+//! and `recordings/bench/work_precision.png` (the plot). `-- --quick` skips the finest
+//! references and the repeated timings (for a smoke run).
+//!
+//! Errors are measured against a reference run at a much finer fixed step, whose own error is
+//! estimated by comparing it with a run at twice its step (printed as "reference check"):
+//!
+//! - onset: the largest relative error `|t - t_ref| / t_ref` of slip-event onsets, matching the
+//!   k-th event of each segment; infinite if the runs have different events. The paper case is
+//!   compared up to 450 s only: its event sequence is chaotic after its first slips (see
+//!   `slipfront::ensemble`), and any change of step rearranges later events.
+//! - traction: the relative L2 error of the total friction force over the first 300 s (the
+//!   paper case: elastic waves and quasi-static loading before slip), and over the whole
+//!   1000 s for the spring block (whose first slip comes at 790 s).
+//!
+//! Wall times are medians of three runs of the solver and event catalog (no files written),
+//! taken one after another in this process (one run when it takes over 10 s).
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::time::Instant;
+
+use slipfront::case::{self, Case};
+use slipfront::figures::{WorkPrecisionCurve, plot_work_precision};
+use slipfront::run::{LoopOptions, Outcome, run};
+use slipfront::scene::{self, Frame, Layout};
+use slipfront::sink::events::Catalog;
+use slipfront::sink::{Ending, Sink, SinkError};
+
+/// Collects `(t, total friction force)` of every step.
+#[derive(Default)]
+struct ForceTrace {
+    times: Vec<f64>,
+    force: Vec<f64>,
+}
+
+impl Sink for &mut ForceTrace {
+    fn begin(&mut self, _: &Layout) -> Result<(), SinkError> {
+        Ok(())
+    }
+    fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
+        self.times.push(frame.time);
+        self.force.push(frame.friction_force);
+        Ok(())
+    }
+    fn finish(&mut self, _: Ending, _: Option<&Frame>, _: &Catalog) -> Result<(), SinkError> {
+        Ok(())
+    }
+}
+
+/// One run's results.
+struct Measured {
+    wall: f64,
+    steps: u64,
+    rejected: u64,
+    /// Onsets of each segment's events, in order.
+    onsets: BTreeMap<usize, Vec<f64>>,
+    trace: ForceTrace,
+}
+
+fn load(name: &str, overrides: &[String]) -> Case {
+    let path = format!("{}/cases/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    case::load(Path::new(&path), overrides).unwrap_or_else(|e| panic!("{name} {overrides:?}: {e}"))
+}
+
+fn measure_once(case: &Case) -> Result<Measured, String> {
+    let mut scene = scene::build(case).expect("the benchmark's cases build");
+    let mut trace = ForceTrace::default();
+    let started = Instant::now();
+    let outcome = {
+        let mut sinks: Vec<Box<dyn Sink + '_>> = vec![Box::new(&mut trace)];
+        run(scene.as_mut(), &case.time, &mut sinks, LoopOptions::for_case(case))
+    };
+    let wall = started.elapsed().as_secs_f64();
+    let (steps, rejected, catalog) = match outcome {
+        Outcome::Completed { steps, rejected, catalog, .. } => (steps, rejected, catalog),
+        Outcome::Failed { error, .. } => return Err(format!("stopped at t = {:.1} s: {}", error.time, error.message)),
+        other => return Err(format!("{other:?}")),
+    };
+    let mut onsets: BTreeMap<usize, Vec<f64>> = BTreeMap::new();
+    for e in &catalog.events {
+        onsets.entry(e.segment).or_default().push(e.onset);
+    }
+    Ok(Measured { wall, steps, rejected, onsets, trace })
+}
+
+/// Runs `repeats` times and keeps the last run with the median wall time.
+fn measure(case: &Case, repeats: usize) -> Result<Measured, String> {
+    let mut walls = Vec::new();
+    let mut last = None;
+    for _ in 0..repeats.max(1) {
+        let m = measure_once(case)?;
+        walls.push(m.wall);
+        let long = m.wall > 10.0;
+        last = Some(m);
+        // Runs this long vary by less than a few per cent; one is enough.
+        if long {
+            break;
+        }
+    }
+    walls.sort_by(f64::total_cmp);
+    let mut m = last.expect("at least one run");
+    m.wall = walls[walls.len() / 2];
+    Ok(m)
+}
+
+/// Largest relative onset error over the reference's events before `horizon`.
+fn onset_error(run: &Measured, reference: &Measured, horizon: f64) -> f64 {
+    let mut worst = 0.0_f64;
+    for (segment, ref_onsets) in &reference.onsets {
+        let ref_onsets: Vec<f64> = ref_onsets.iter().copied().filter(|&t| t < horizon).collect();
+        let onsets: Vec<f64> = run
+            .onsets
+            .get(segment)
+            .map(|v| v.iter().copied().filter(|&t| t < horizon + 1.0).collect())
+            .unwrap_or_default();
+        if onsets.len() < ref_onsets.len() {
+            return f64::INFINITY;
+        }
+        for (t, r) in onsets.iter().zip(&ref_onsets) {
+            worst = worst.max((t - r).abs() / r);
+        }
+    }
+    for (segment, onsets) in &run.onsets {
+        let extra = onsets.iter().filter(|&&t| t < horizon - 1.0).count();
+        let expected = reference.onsets.get(segment).map_or(0, |v| v.iter().filter(|&&t| t < horizon).count());
+        if extra > expected {
+            return f64::INFINITY;
+        }
+    }
+    worst
+}
+
+/// Linear interpolation of a trace at `t`.
+fn at(trace: &ForceTrace, t: f64) -> f64 {
+    let i = trace.times.partition_point(|&x| x < t);
+    if i == 0 {
+        return trace.force[0];
+    }
+    if i >= trace.times.len() {
+        return *trace.force.last().expect("non-empty trace");
+    }
+    let (t0, t1) = (trace.times[i - 1], trace.times[i]);
+    let w = if t1 > t0 { (t - t0) / (t1 - t0) } else { 1.0 };
+    trace.force[i - 1] * (1.0 - w) + trace.force[i] * w
+}
+
+/// Relative L2 error of the friction force over `[0, window]`, on a grid of 0.01 s.
+fn traction_error(run: &Measured, reference: &Measured, window: f64) -> f64 {
+    let n = (window / 0.01).round() as usize;
+    let (mut diff, mut norm) = (0.0, 0.0);
+    for k in 0..=n {
+        let t = k as f64 * 0.01;
+        let r = at(&reference.trace, t);
+        diff += (at(&run.trace, t) - r).powi(2);
+        norm += r * r;
+    }
+    (diff / norm).sqrt()
+}
+
+struct Benchmark {
+    name: &'static str,
+    title: &'static str,
+    t_end: f64,
+    horizon: f64,
+    window: f64,
+    fixed: &'static [f64],
+    tolerances: &'static [f64],
+    reference_dt: f64,
+}
+
+struct Row {
+    integrator: &'static str,
+    setting: String,
+    m: Result<Measured, String>,
+    onset: f64,
+    traction: f64,
+}
+
+fn main() {
+    let quick = std::env::args().any(|a| a == "--quick");
+    let repeats = if quick { 1 } else { 3 };
+    let benchmarks = [
+        Benchmark {
+            name: "spring_block",
+            title: "spring block, 1000 s",
+            t_end: 1000.0,
+            horizon: 1000.0,
+            window: 1000.0,
+            fixed: &[0.05, 0.02, 0.01, 0.005, 0.002, 0.001],
+            tolerances: &[1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
+            reference_dt: if quick { 2e-4 } else { 2.5e-5 },
+        },
+        Benchmark {
+            name: "paper_triangular",
+            title: "paper case, 450 s",
+            t_end: 450.0,
+            horizon: 450.0,
+            window: 300.0,
+            fixed: &[0.1, 0.05, 0.02, 0.01, 0.005],
+            tolerances: &[1e-5, 1e-6, 1e-7],
+            reference_dt: if quick { 2e-3 } else { 5e-4 },
+        },
+    ];
+    let mut report = String::from(
+        "# Work-precision benchmark\n\nGenerated by `cargo bench --bench work_precision`. Errors against a \
+         reference at a much finer fixed step (its own error estimated from the run at twice its step); wall \
+         times are medians of 3 runs (1 when over 10 s) of the solver and event catalog, without output files. `solves` counts \
+         integrator steps solved: one per fixed step, three per adaptive attempt (one whole step and two \
+         halves).\n",
+    );
+    let mut panels = Vec::new();
+    for b in &benchmarks {
+        let with = |extra: &[String]| {
+            let mut o = vec![format!("time.t_end={}", b.t_end)];
+            o.extend_from_slice(extra);
+            load(b.name, &o)
+        };
+        eprintln!("{}: reference at dt = {} s", b.name, b.reference_dt);
+        let reference = measure(&with(&[format!("time.dt={}", b.reference_dt)]), 1).expect("the reference completes");
+        let check = measure(&with(&[format!("time.dt={}", 2.0 * b.reference_dt)]), 1).expect("the check completes");
+        let check_onset = onset_error(&check, &reference, b.horizon);
+        let check_traction = traction_error(&check, &reference, b.window);
+        let mut rows = Vec::new();
+        for &dt in b.fixed {
+            eprintln!("{}: fixed dt = {dt}", b.name);
+            let m = measure(&with(&[format!("time.dt={dt}")]), repeats);
+            rows.push(Row {
+                integrator: "Wilson-θ fixed",
+                setting: format!("dt = {dt} s"),
+                onset: 0.0,
+                traction: 0.0,
+                m,
+            });
+        }
+        for &tol in b.tolerances {
+            eprintln!("{}: adaptive tolerance = {tol}", b.name);
+            let m = measure(&with(&[format!("time.tolerance={tol}")]), repeats);
+            rows.push(Row {
+                integrator: "Wilson-θ adaptive",
+                setting: format!("tolerance = {tol:e}"),
+                onset: 0.0,
+                traction: 0.0,
+                m,
+            });
+        }
+        for row in &mut rows {
+            if let Ok(m) = &row.m {
+                row.onset = onset_error(m, &reference, b.horizon);
+                row.traction = traction_error(m, &reference, b.window);
+            }
+        }
+        report.push_str(&format!(
+            "\n## {}\n\nReference: fixed dt = {} s, {} steps, {:.1} s wall. Reference check (dt = {} s against it): \
+             onset error {:.2e}, traction error {:.2e}; the reference's own errors are about a quarter of these \
+             (second order).\n\n| integrator | setting | steps | rejected | solves | wall (s) | onset error | traction L2 error |\n|---|---|---|---|---|---|---|---|\n",
+            b.title,
+            b.reference_dt,
+            reference.steps,
+            reference.wall,
+            2.0 * b.reference_dt,
+            check_onset,
+            check_traction,
+        ));
+        for row in &rows {
+            let line = match &row.m {
+                Ok(m) => {
+                    let solves = if row.integrator.contains("adaptive") { 3 * (m.steps + m.rejected) } else { m.steps };
+                    format!(
+                        "| {} | {} | {} | {} | {} | {:.3} | {:.2e} | {:.2e} |\n",
+                        row.integrator, row.setting, m.steps, m.rejected, solves, m.wall, row.onset, row.traction
+                    )
+                }
+                Err(why) => format!("| {} | {} | {why} | | | | | |\n", row.integrator, row.setting),
+            };
+            report.push_str(&line);
+        }
+        for (metric, pick) in [("onset", 0), ("traction", 1)] {
+            let curves = ["Wilson-θ fixed", "Wilson-θ adaptive"]
+                .iter()
+                .map(|name| WorkPrecisionCurve {
+                    label: name.to_string(),
+                    points: rows
+                        .iter()
+                        .filter(|r| r.integrator == *name)
+                        .filter_map(|r| {
+                            r.m.as_ref().ok().map(|m| (m.wall, if pick == 0 { r.onset } else { r.traction }))
+                        })
+                        .collect(),
+                })
+                .collect();
+            panels.push((format!("{}: {metric} error", b.title), curves));
+        }
+    }
+    let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("recordings/bench");
+    std::fs::create_dir_all(&out).expect("recordings/bench is writable");
+    std::fs::write(out.join("work_precision.md"), &report).expect("the table is written");
+    plot_work_precision(&out.join("work_precision.png"), &panels).expect("the plot is written");
+    println!("{report}");
+    println!("wrote {} and work_precision.png", out.join("work_precision.md").display());
+}
