@@ -192,8 +192,8 @@ fn main() {
             horizon: 1000.0,
             window: 1000.0,
             fixed: &[0.05, 0.02, 0.01, 0.005, 0.002, 0.001],
-            tolerances: &[1e-4, 1e-5, 1e-6, 1e-7, 1e-8],
-            reference_dt: if quick { 2e-4 } else { 2.5e-5 },
+            tolerances: &[1e-4, 1e-5, 1e-6, 1e-7],
+            reference_dt: if quick { 2e-4 } else { 5e-5 },
         },
         Benchmark {
             name: "paper_triangular",

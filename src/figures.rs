@@ -269,6 +269,8 @@ pub fn plot_work_precision(path: &Path, panels: &[(String, Vec<WorkPrecisionCurv
                 .configure_mesh()
                 .x_desc("wall time (s), median")
                 .y_desc("relative error")
+                .x_label_formatter(&|v| format!("{v:.2}"))
+                .y_label_formatter(&|v| format!("{v:.0e}"))
                 .label_style(("sans-serif", 15))
                 .draw()
                 .map_err(draw_error)?;

@@ -8,6 +8,7 @@ pub mod ensemble;
 pub mod fem;
 pub mod figures;
 pub mod friction;
+pub mod fuzzing;
 pub mod inspect;
 pub mod mcap_log;
 pub mod replay;

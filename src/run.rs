@@ -89,7 +89,6 @@ pub fn run(
     sinks: &mut [Box<dyn Sink + '_>],
     options: LoopOptions<'_>,
 ) -> Outcome {
-    let needs = sinks.iter().fold(options.needs, |n, s| n.union(s.needs()));
     let layout: Layout = scene.layout().clone();
     // Every sink begins even if one fails (a full disk under one file), so that the others
     // are finished as valid, empty files of a failed run.
@@ -100,6 +99,9 @@ pub fn run(
             begun = result;
         }
     }
+    // Asked after `begin`: a sink learns from the layout what it will read (an MCAP log's
+    // node selection, say).
+    let needs = sinks.iter().fold(options.needs, |n, s| n.union(s.needs()));
     let detector = EventDetector::new(layout.segments.len(), options.slip_rate_threshold, options.merge_within);
     let mut observers = Observers { sinks, detector, last: None };
     if let Err(e) = begun {

@@ -396,3 +396,32 @@ fn rerun_itself_opens_the_log_and_shows_the_fields() {
     let text = String::from_utf8_lossy(&dump.stdout);
     assert!(text.contains("/contact/segments@slipfront.SegmentStates:message"), "{}", &text[..text.len().min(2000)]);
 }
+
+#[test]
+fn a_log_alone_without_a_recording_holds_the_nodes() {
+    // With --no-rrd the MCAP sink is the only one that reads the surface nodes; it learns
+    // which in `begin`, so the loop must ask for its needs after that (found by fuzz/run.sh
+    // seeding its corpus: this panicked on an empty node list).
+    let dir = scratch("alone");
+    let log = dir.join("alone.mcap");
+    let case = format!("{}/cases/paper_triangular.toml", env!("CARGO_MANIFEST_DIR"));
+    let (code, text) = slipfront(&[
+        "run",
+        &case,
+        "--quiet",
+        "--set",
+        "time.t_end=1",
+        "--no-rrd",
+        "--mcap",
+        log.to_str().unwrap(),
+        "--out-dir",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{text}");
+    let read = slipfront::mcap_log::reader::read(&log).unwrap();
+    let frame = read.frames.last().unwrap();
+    assert_eq!(frame.surface_nodes.len(), 11, "all 11 surface nodes (the default up to 64 segments)");
+    assert!(frame.surface_nodes.iter().all(|u| u[0].is_finite() && u[1].is_finite()));
+    let (code, text) = slipfront(&["check", log.to_str().unwrap()]);
+    assert_eq!(code, 0, "{text}");
+}

@@ -40,7 +40,7 @@ impl std::error::Error for SinkError {}
 /// An observer of a run.
 pub trait Sink {
     /// What this sink reads from frames beyond the always-present segment traction, slip and
-    /// slip rate.
+    /// slip rate; asked after [`Sink::begin`], so it may depend on the layout.
     fn needs(&self) -> Needs {
         Needs::default()
     }

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Fuzzes slipfront's three readers of untrusted input with cargo fuzz (libFuzzer):
+#   case_parse  case text and --set overrides     (slipfront::fuzzing::case_parse)
+#   mcap_read   MCAP logs for check and replay    (slipfront::fuzzing::mcap_read)
+#   rrd_read    Rerun recordings for check         (slipfront::fuzzing::rrd_read)
+#
+# Usage: fuzz/run.sh [SECONDS_PER_TARGET]   (default 600)
+#
+# Needs `cargo install cargo-fuzz`. The stable toolchain builds libFuzzer's instrumentation with
+# RUSTC_BOOTSTRAP=1; no sanitizer (-s none), since the code under test is safe Rust and
+# a panic is what we look for. Corpora are seeded from the shipped cases and from short runs'
+# recordings. Crashes land in fuzz/artifacts/<target>/; once fixed, copy each into
+# fuzz/regressions/<target>/ so that `cargo test` replays it (tests/fuzz_regressions.rs).
+set -euo pipefail
+cd "$(dirname "$0")"
+seconds="${1:-600}"
+RUSTC_BOOTSTRAP=1 cargo fuzz build -s none -O --debug-assertions
+
+mkdir -p corpus/case_parse corpus/mcap_read corpus/rrd_read seeds
+cp ../cases/*.toml corpus/case_parse/
+cp regressions/case_parse/* corpus/case_parse/
+# The seeds come from the main build (RUSTC_BOOTSTRAP is for the fuzz build only: set for cargo
+# in the main folder, it would change every fingerprint there and rebuild everything).
+(cd .. && env -u RUSTC_BOOTSTRAP cargo build --release --quiet --bin slipfront)
+../target/release/slipfront run ../cases/spring_block.toml --quiet --set time.t_end=0.05 \
+    --out-dir seeds --mcap seeds/spring_block.mcap
+../target/release/slipfront run ../cases/paper_triangular.toml --quiet --set time.t_end=0.05 \
+    --no-rrd --out-dir seeds --mcap seeds/paper_triangular.mcap
+cp seeds/*.mcap regressions/mcap_read/* corpus/mcap_read/
+cp seeds/spring_block.rrd regressions/rrd_read/* corpus/rrd_read/
+
+for target in case_parse mcap_read rrd_read; do
+    echo "== $target: $seconds s"
+    RUSTC_BOOTSTRAP=1 cargo fuzz run -s none -O --debug-assertions "$target" "corpus/$target" -- \
+        -max_total_time="$seconds" -max_len=262144 -rss_limit_mb=4096 -timeout=20 -print_final_stats=1 \
+        2>&1 | tee "fuzz-$target.log" | grep -E "^(#[0-9]+ +DONE|stat::|==|SUMMARY|Done)" || true
+done
