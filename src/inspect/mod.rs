@@ -1,6 +1,7 @@
 //! Reading recordings back and checking them (`slipfront check`).
 
 pub mod check;
+pub mod framing;
 pub mod rrd;
 
 use std::collections::{BTreeMap, BTreeSet};

@@ -8,25 +8,40 @@ use rerun::external::re_log_encoding::DecoderApp;
 use rerun::log::{Chunk, LogMsg};
 use rerun::{ComponentIdentifier, TimelineName};
 
+use super::framing::{self, Plausible};
 use super::{ReadError, Recording, View};
 use crate::sink::schema;
 
 /// Decodes every message of `path`. A file that ends mid-message (a run killed while writing)
 /// yields what came before, with [`Recording::problem`] saying where it stopped.
 pub fn read(path: &Path) -> Result<Recording, ReadError> {
-    let file = File::open(path).map_err(|e| ReadError(format!("cannot open {}: {e}", path.display())))?;
-    decode(BufReader::new(file), &path.display().to_string())
+    let open_error = |e: std::io::Error| ReadError(format!("cannot open {}: {e}", path.display()));
+    let mut file = File::open(path).map_err(open_error)?;
+    let total = file.metadata().map_err(open_error)?.len();
+    let plausible = framing::rrd(&mut file, total);
+    decode(BufReader::new(std::io::Read::take(file, plausible.len)), &path.display().to_string(), plausible)
 }
 
 /// As [`read`], from the bytes of a recording; `name` stands for the file in messages.
 pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Recording, ReadError> {
-    decode(bytes, name)
+    let plausible = framing::rrd(&mut &*bytes, bytes.len() as u64);
+    let prefix = &bytes[..usize::try_from(plausible.len).unwrap_or(bytes.len()).min(bytes.len())];
+    decode(prefix, name, plausible)
 }
 
-fn decode(reader: impl std::io::BufRead, name: &str) -> Result<Recording, ReadError> {
+/// Decodes the prefix [`framing::rrd`] found plausible; a shortened input is reported as the
+/// recording's problem.
+fn decode(reader: impl std::io::BufRead, name: &str, plausible: Plausible) -> Result<Recording, ReadError> {
     let decoder =
         DecoderApp::decode_eager(reader).map_err(|e| ReadError(format!("{name} is not a Rerun recording: {e}")))?;
-    Ok(from_messages(decoder.map(|m| m.map_err(|e| e.to_string()))))
+    let mut recording = from_messages(decoder.map(|m| m.map_err(|e| e.to_string())));
+    if let Some(problem) = plausible.problem {
+        recording.problem = Some(match recording.problem.take() {
+            Some(other) => format!("{problem}; {other}"),
+            None => problem,
+        });
+    }
+    Ok(recording)
 }
 
 /// Builds a [`Recording`] from log messages (a file's, or an in-memory stream's).

@@ -11,6 +11,7 @@ use prost::Message as _;
 
 use super::{LogHeader, proto};
 use crate::inspect::ReadError;
+use crate::inspect::framing;
 use crate::scene::{Frame, SegmentSample};
 use crate::sink::events::Catalog;
 use crate::sink::schema::RunEnding;
@@ -52,11 +53,20 @@ pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
     if bytes.is_empty() {
         return Err(ReadError(format!("{name} is empty: no MCAP log to read")));
     }
-    // The MCAP parser reads untrusted bytes; should it ever panic on them, say so rather than
-    // abort.
-    std::panic::catch_unwind(|| decode(bytes, name)).unwrap_or_else(|_| {
+    // The MCAP parser trusts the sizes in record headers: give it only the prefix whose sizes
+    // are plausible. Should it still panic on what it reads, say so rather than abort.
+    let plausible = framing::mcap(&mut &*bytes, bytes.len() as u64);
+    let prefix = &bytes[..usize::try_from(plausible.len).unwrap_or(bytes.len()).min(bytes.len())];
+    let mut log = std::panic::catch_unwind(|| decode(prefix, name)).unwrap_or_else(|_| {
         Err(ReadError(format!("{name}: the MCAP reader failed on damaged data; nothing was recovered")))
-    })
+    })?;
+    if let Some(problem) = plausible.problem {
+        log.problem = Some(match log.problem.take() {
+            Some(other) => format!("{problem}; {other}"),
+            None => problem,
+        });
+    }
+    Ok(log)
 }
 
 fn decode(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
