@@ -32,9 +32,25 @@ pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Recording, ReadError> {
 /// Decodes the prefix [`framing::rrd`] found plausible; a shortened input is reported as the
 /// recording's problem.
 fn decode(reader: impl std::io::BufRead, name: &str, plausible: Plausible) -> Result<Recording, ReadError> {
-    let decoder =
+    let mut decoder =
         DecoderApp::decode_eager(reader).map_err(|e| ReadError(format!("{name} is not a Rerun recording: {e}")))?;
-    let mut recording = from_messages(decoder.map(|m| m.map_err(|e| e.to_string())));
+    // The Arrow IPC reader under the decoder can panic on damaged bytes (arrow-buffer 58 slices
+    // out of bounds; found by fuzzing). A panic ends the reading like any other damage, keeping
+    // the messages before it.
+    let mut panicked = false;
+    let messages = std::iter::from_fn(|| {
+        if panicked {
+            return None;
+        }
+        match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| decoder.next())) {
+            Ok(next) => next.map(|m| m.map_err(|e| e.to_string())),
+            Err(_) => {
+                panicked = true;
+                Some(Err("the Rerun decoder failed on damaged data".to_string()))
+            }
+        }
+    });
+    let mut recording = from_messages(messages);
     if let Some(problem) = plausible.problem {
         recording.problem = Some(match recording.problem.take() {
             Some(other) => format!("{problem}; {other}"),
