@@ -20,6 +20,23 @@ pub struct Plausible {
     pub problem: Option<String>,
 }
 
+impl Plausible {
+    /// The plausible prefix of `bytes`.
+    pub fn prefix<'a>(&self, bytes: &'a [u8]) -> &'a [u8] {
+        &bytes[..usize::try_from(self.len).unwrap_or(bytes.len()).min(bytes.len())]
+    }
+
+    /// Puts why the input was shortened, if it was, in front of the reader's own `problem`.
+    pub fn report_into(self, problem: &mut Option<String>) {
+        if let Some(cut) = self.problem {
+            *problem = Some(match problem.take() {
+                Some(other) => format!("{cut}; {other}"),
+                None => cut,
+            });
+        }
+    }
+}
+
 /// Reads `buf.len()` bytes at `offset`; false if the input ends first.
 pub trait ReadAt {
     fn read_at(&mut self, offset: u64, buf: &mut [u8]) -> bool;

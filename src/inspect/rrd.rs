@@ -25,8 +25,7 @@ pub fn read(path: &Path) -> Result<Recording, ReadError> {
 /// As [`read`], from the bytes of a recording; `name` stands for the file in messages.
 pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Recording, ReadError> {
     let plausible = framing::rrd(&mut &*bytes, bytes.len() as u64);
-    let prefix = &bytes[..usize::try_from(plausible.len).unwrap_or(bytes.len()).min(bytes.len())];
-    decode(prefix, name, plausible)
+    decode(plausible.prefix(bytes), name, plausible)
 }
 
 /// Decodes the prefix [`framing::rrd`] found plausible; a shortened input is reported as the
@@ -51,12 +50,7 @@ fn decode(reader: impl std::io::BufRead, name: &str, plausible: Plausible) -> Re
         }
     });
     let mut recording = from_messages(messages);
-    if let Some(problem) = plausible.problem {
-        recording.problem = Some(match recording.problem.take() {
-            Some(other) => format!("{problem}; {other}"),
-            None => problem,
-        });
-    }
+    plausible.report_into(&mut recording.problem);
     Ok(recording)
 }
 

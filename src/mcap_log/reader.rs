@@ -56,16 +56,10 @@ pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
     // The MCAP parser trusts the sizes in record headers: give it only the prefix whose sizes
     // are plausible. Should it still panic on what it reads, say so rather than abort.
     let plausible = framing::mcap(&mut &*bytes, bytes.len() as u64);
-    let prefix = &bytes[..usize::try_from(plausible.len).unwrap_or(bytes.len()).min(bytes.len())];
-    let mut log = std::panic::catch_unwind(|| decode(prefix, name)).unwrap_or_else(|_| {
+    let mut log = std::panic::catch_unwind(|| decode(plausible.prefix(bytes), name)).unwrap_or_else(|_| {
         Err(ReadError(format!("{name}: the MCAP reader failed on damaged data; nothing was recovered")))
     })?;
-    if let Some(problem) = plausible.problem {
-        log.problem = Some(match log.problem.take() {
-            Some(other) => format!("{problem}; {other}"),
-            None => problem,
-        });
-    }
+    plausible.report_into(&mut log.problem);
     Ok(log)
 }
 
