@@ -5,11 +5,13 @@
 //!   outside the bounds, NaN or a panic.
 //! - Symmetry: the law is isotropic along the contact, so reversing the traction and the
 //!   increment reverses the result exactly (bit for bit).
+//! - Restarts: starting the consistency solve from another update of the same state (another
+//!   increment, another step length) changes the work, not the result.
 //! - Consistency: the returned tangents `∂f_t/∂Δū` and `∂(1/R*)/∂Δū` match central finite
 //!   differences of the update itself wherever the update is smooth in `Δū`.
 
 use proptest::prelude::*;
-use slipfront::friction::{ContactState, FrictionError, FrictionParams, RStarLaw, update};
+use slipfront::friction::{ContactState, FrictionError, FrictionParams, RStarLaw, update, update_from};
 
 /// Log-uniform in `[lo, hi]`.
 fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
@@ -119,6 +121,36 @@ proptest! {
             }
             (Err(f), Err(b)) => prop_assert_eq!(f.to_string(), b.to_string()),
             (f, b) => prop_assert!(false, "{f:?} vs {b:?}"),
+        }
+    }
+
+    #[test]
+    fn a_restart_changes_the_work_not_the_result(
+        (p, state, du, dt) in scenario(),
+        other_increment in 0.3..3.0f64,
+        other_step in 0.5..2.0f64,
+    ) {
+        let Ok(earlier) = update(&p, &state, du * other_increment, dt * other_step) else { return Ok(()) };
+        prop_assume!(earlier.restart.is_some());
+        let cold = update(&p, &state, du, dt);
+        let warm = update_from(&p, &state, du, dt, earlier.restart.map(|r| r.scaled(1.0 / other_increment)));
+        match (cold, warm) {
+            (Ok(c), Ok(w)) => {
+                // Both solves stop at rounding noise of the traction's size; the strength
+                // μ_k f_n μ_s/μ_k bounds it.
+                let strength = p.mu_s * state.traction_n;
+                prop_assert!((c.state.traction_t - w.state.traction_t).abs() <= 1e-12 * strength,
+                    "traction {} vs {}", c.state.traction_t, w.state.traction_t);
+                prop_assert!((c.state.structure - w.state.structure).abs() <= 1e-12 * p.max_structure(),
+                    "1/R* {} vs {}", c.state.structure, w.state.structure);
+                prop_assert!((c.plastic_increment - w.plastic_increment).abs()
+                    <= 1e-12 * (c.plastic_increment.abs() + strength / p.alpha_t),
+                    "Δp {} vs {}", c.plastic_increment, w.plastic_increment);
+                prop_assert!((c.tangent - w.tangent).abs() <= 1e-9 * p.alpha_t,
+                    "tangent {} vs {}", c.tangent, w.tangent);
+            }
+            (Err(c), Err(w)) => prop_assert_eq!(std::mem::discriminant(&c), std::mem::discriminant(&w)),
+            (c, w) => prop_assert!(false, "{c:?} vs {w:?}"),
         }
     }
 

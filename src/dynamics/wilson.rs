@@ -28,7 +28,7 @@ use std::fmt;
 use super::body::LinearBody;
 use super::contact::ContactBoundary;
 use super::sparse::{Cholesky, FactorError, SymmetricMatrix};
-use crate::friction::{ContactState, FrictionError, update};
+use crate::friction::{ContactState, FrictionError, Restart, update_from};
 
 /// Settings of the integrator.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -199,6 +199,8 @@ struct Evaluation {
     residual: Vec<f64>,
     acceleration: Vec<f64>,
     contact_stiffness: Vec<f64>,
+    /// Where each contact point's update ended, to start the next trial's.
+    restarts: Vec<Option<Restart>>,
 }
 
 impl Dynamics {
@@ -349,7 +351,7 @@ impl Dynamics {
         // Predictor: constant acceleration over τ.
         let mut du_theta: Vec<f64> =
             s.velocity.iter().zip(&s.acceleration).map(|(v, a)| tau * v + 0.5 * tau * tau * a).collect();
-        let mut eval = self.evaluate(&du_theta, tau)?;
+        let mut eval = self.evaluate(&du_theta, tau, &[])?;
         let mut norm = l2(&eval.residual);
         let scale = self.settings.velocity_scale.max(f64::MIN_POSITIVE) * tau;
         let mut last_correction = f64::INFINITY;
@@ -361,7 +363,7 @@ impl Dynamics {
             let mut step_length = 1.0;
             let (trial, trial_eval, trial_norm) = loop {
                 let candidate: Vec<f64> = du_theta.iter().zip(&delta).map(|(u, d)| u + step_length * d).collect();
-                let candidate_eval = self.evaluate(&candidate, tau)?;
+                let candidate_eval = self.evaluate(&candidate, tau, &eval.restarts)?;
                 let candidate_norm = l2(&candidate_eval.residual);
                 if candidate_norm <= norm || step_length < 1.0 / 64.0 {
                     break (candidate, candidate_eval, candidate_norm);
@@ -376,15 +378,16 @@ impl Dynamics {
                 return Err(StepError::NonFinite);
             }
             if last_correction <= self.settings.tolerance * max_abs(&du_theta).max(scale) {
-                return self.finish_step(dt, &eval.acceleration);
+                return self.finish_step(dt, &eval.acceleration, &eval.restarts);
             }
         }
         Err(StepError::NotConverged { iterations: self.settings.max_iterations, correction: last_correction })
     }
 
     /// Residual of the equation of motion at `t_n + τ` for a trial displacement increment
-    /// `u_θ - u_n`, and the contact tangents.
-    fn evaluate(&self, du_theta: &[f64], tau: f64) -> Result<Evaluation, StepError> {
+    /// `u_θ - u_n`, and the contact tangents; `restarts` (empty, or one per point) are an earlier
+    /// trial's, from the same state.
+    fn evaluate(&self, du_theta: &[f64], tau: f64, restarts: &[Option<Restart>]) -> Result<Evaluation, StepError> {
         let s = &self.state;
         let n = du_theta.len();
         let c0 = 6.0 / (tau * tau);
@@ -401,17 +404,20 @@ impl Dynamics {
         let params = &self.contact.params;
         let base = self.contact.base_displacement_at(t_theta) - self.contact.base_displacement_at(s.time);
         let mut contact_stiffness = Vec::with_capacity(self.contact.points.len());
+        let mut next_restarts = Vec::with_capacity(self.contact.points.len());
         for (k, (point, state)) in self.contact.points.iter().zip(&s.contact).enumerate() {
             let slip = point.interpolate(du_theta) - base;
-            let updated = update(params, state, slip, tau).map_err(|error| StepError::Friction {
+            let restart = restarts.get(k).copied().flatten();
+            let updated = update_from(params, state, slip, tau, restart).map_err(|error| StepError::Friction {
                 point: k,
                 state: *state,
                 error,
             })?;
             point.scatter(-point.weight * updated.state.traction_t, &mut residual);
             contact_stiffness.push(-point.weight * updated.tangent);
+            next_restarts.push(updated.restart);
         }
-        Ok(Evaluation { residual, acceleration, contact_stiffness })
+        Ok(Evaluation { residual, acceleration, contact_stiffness, restarts: next_restarts })
     }
 
     /// Assembles and factors `6/τ² M + K + K_c` unless the factored one is the same.
@@ -445,7 +451,14 @@ impl Dynamics {
 
     /// Interpolates back to `t_{n+1}`, advances the contact states over `Δt`, and updates the
     /// equilibrium imbalance and the energy ledger.
-    fn finish_step(&mut self, dt: f64, acceleration_theta: &[f64]) -> Result<(), StepError> {
+    /// `restarts` are the points' updates over `τ = θΔt`: their slip, scaled by `1/θ`, starts the
+    /// updates over `Δt`.
+    fn finish_step(
+        &mut self,
+        dt: f64,
+        acceleration_theta: &[f64],
+        restarts: &[Option<Restart>],
+    ) -> Result<(), StepError> {
         let n = self.body.dofs();
         let theta = self.settings.theta;
         let old = self.state.clone();
@@ -466,7 +479,8 @@ impl Dynamics {
         }
         for (k, point) in self.contact.points.iter().enumerate() {
             let slip = point.interpolate(&du) - base;
-            let updated = update(&self.contact.params, &old.contact[k], slip, dt)
+            let restart = restarts[k].map(|r| r.scaled(1.0 / theta));
+            let updated = update_from(&self.contact.params, &old.contact[k], slip, dt, restart)
                 .map_err(|error| StepError::Friction { point: k, state: old.contact[k], error })?;
             s.contact[k] = updated.state;
             s.plastic_increment[k] = updated.plastic_increment;

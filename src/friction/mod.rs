@@ -14,4 +14,4 @@ pub mod update;
 
 pub use params::{FrictionParams, RStarLaw};
 pub use state::ContactState;
-pub use update::{FrictionError, Update, update};
+pub use update::{FrictionError, Restart, Update, update, update_from};
