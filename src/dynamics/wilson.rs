@@ -184,6 +184,8 @@ pub struct Dynamics {
     /// energy check uses before much work has been done.
     energy_scale: f64,
     split_steps: u64,
+    /// Where each contact point's last update ended, to start the next step's first trial.
+    restarts: Vec<Option<Restart>>,
 }
 
 /// A saved state of [`Dynamics`] (see [`Dynamics::snapshot`]).
@@ -277,6 +279,7 @@ impl Dynamics {
             ledger: None,
             energy_scale,
             split_steps: 0,
+            restarts: Vec::new(),
         };
         if dynamics.settings.energy_tolerance.is_some() {
             dynamics.track_energy();
@@ -351,7 +354,7 @@ impl Dynamics {
         // Predictor: constant acceleration over τ.
         let mut du_theta: Vec<f64> =
             s.velocity.iter().zip(&s.acceleration).map(|(v, a)| tau * v + 0.5 * tau * tau * a).collect();
-        let mut eval = self.evaluate(&du_theta, tau, &[])?;
+        let mut eval = self.evaluate(&du_theta, tau, &self.restarts)?;
         let mut norm = l2(&eval.residual);
         let scale = self.settings.velocity_scale.max(f64::MIN_POSITIVE) * tau;
         let mut last_correction = f64::INFINITY;
@@ -359,6 +362,17 @@ impl Dynamics {
             self.factor_jacobian(tau, &eval.contact_stiffness)?;
             let mut delta: Vec<f64> = eval.residual.iter().map(|r| -r).collect();
             self.cholesky.solve_in_place(&mut delta);
+            let correction = max_abs(&delta);
+            if !correction.is_finite() {
+                return Err(StepError::NonFinite);
+            }
+            if correction <= self.settings.tolerance * max_abs(&du_theta).max(scale) {
+                // Converged: the correction is taken without evaluating the contact again (its
+                // effect on the residual is of the order of its square).
+                du_theta.iter_mut().zip(&delta).for_each(|(u, d)| *u += d);
+                let acceleration = self.theta_acceleration(&du_theta, tau);
+                return self.finish_step(dt, &acceleration, &eval.restarts);
+            }
             // Backtracking keeps the residual from growing across stick/slip switches.
             let mut step_length = 1.0;
             let (trial, trial_eval, trial_norm) = loop {
@@ -390,9 +404,7 @@ impl Dynamics {
     fn evaluate(&self, du_theta: &[f64], tau: f64, restarts: &[Option<Restart>]) -> Result<Evaluation, StepError> {
         let s = &self.state;
         let n = du_theta.len();
-        let c0 = 6.0 / (tau * tau);
-        let acceleration: Vec<f64> =
-            (0..n).map(|i| c0 * du_theta[i] - 6.0 / tau * s.velocity[i] - 2.0 * s.acceleration[i]).collect();
+        let acceleration = self.theta_acceleration(du_theta, tau);
         let u_theta: Vec<f64> = s.displacement.iter().zip(du_theta).map(|(u, d)| u + d).collect();
         let mut residual = vec![0.0; n];
         self.body.stiffness.mul_vec(&u_theta, &mut residual);
@@ -418,6 +430,17 @@ impl Dynamics {
             next_restarts.push(updated.restart);
         }
         Ok(Evaluation { residual, acceleration, contact_stiffness, restarts: next_restarts })
+    }
+
+    /// `a_θ = 6/τ² (u_θ - u_n) - 6/τ v_n - 2 a_n`.
+    fn theta_acceleration(&self, du_theta: &[f64], tau: f64) -> Vec<f64> {
+        let s = &self.state;
+        let c0 = 6.0 / (tau * tau);
+        du_theta
+            .iter()
+            .zip(s.velocity.iter().zip(&s.acceleration))
+            .map(|(du, (v, a))| c0 * du - 6.0 / tau * v - 2.0 * a)
+            .collect()
     }
 
     /// Assembles and factors `6/τ² M + K + K_c` unless the factored one is the same.
@@ -477,6 +500,7 @@ impl Dynamics {
         if s.velocity.iter().chain(&s.displacement).any(|x| !x.is_finite()) {
             return Err(StepError::NonFinite);
         }
+        let mut next_restarts = Vec::with_capacity(self.contact.points.len());
         for (k, point) in self.contact.points.iter().enumerate() {
             let slip = point.interpolate(&du) - base;
             let restart = restarts[k].map(|r| r.scaled(1.0 / theta));
@@ -484,10 +508,13 @@ impl Dynamics {
                 .map_err(|error| StepError::Friction { point: k, state: old.contact[k], error })?;
             s.contact[k] = updated.state;
             s.plastic_increment[k] = updated.plastic_increment;
+            next_restarts.push(updated.restart.map(|r| r.scaled(theta)));
         }
         s.time = old.time + dt;
         s.step = old.step + 1;
         self.state = next;
+        // Over the next τ = θΔt the slip is about θ times this step's.
+        self.restarts = next_restarts;
         let s = &self.state;
 
         // Imbalance of M a + K u = f⁰ + f_c - f_c(0) at t_{n+1} (Wilson enforces it at t_n + τ).

@@ -46,14 +46,15 @@ pub fn ln_e1(u: f64) -> f64 {
     if u.is_infinite() { f64::NEG_INFINITY } else { ln_e1_and_scaled(u, u.ln()).0 }
 }
 
-/// `(ln E1(u), e^u E1(u))` for `0 < u < ∞` by one evaluation; `ln_u` is `ln u`.
-fn ln_e1_and_scaled(u: f64, ln_u: f64) -> (f64, f64) {
+/// `(ln E1(u), e^u E1(u), e^{-u})` for `0 < u < ∞` by one evaluation; `ln_u` is `ln u`.
+fn ln_e1_and_scaled(u: f64, ln_u: f64) -> (f64, f64, f64) {
+    let ratio = (-u).exp();
     if u <= TAYLOR_LIMIT {
         let value = if u <= SERIES_LIMIT { e1_series(u, ln_u) } else { e1_taylor(u) };
-        (value.ln(), u.exp() * value)
+        (value.ln(), value / ratio, ratio)
     } else {
         let scaled = e1_scaled_continued_fraction(u);
-        (-u + scaled.ln(), scaled)
+        (-u + scaled.ln(), scaled, ratio)
     }
 }
 
@@ -167,6 +168,10 @@ fn e1_scaled_continued_fraction(u: f64) -> f64 {
 pub struct E1Root {
     /// `u ≥ 0` with `E1(u) = y`.
     pub u: f64,
+    /// `e^{-u}`: the sliding ratio `R` when `y = Ψ(R)`.
+    pub ratio: f64,
+    /// `ln u`.
+    ln_u: f64,
     /// `ln y`.
     ln_y: f64,
     /// `e^u E1(u)`, i.e. `-1 / (d ln E1 / d ln u)` at the root.
@@ -188,7 +193,7 @@ const QUADRATIC_STOP: f64 = 1e-8;
 /// Newton on `h(v) = ln E1(e^v) - ln y` in `v = ln u`, where `h` is smooth and strictly
 /// decreasing on the whole real line, safeguarded by bisection.
 pub fn e1_inverse_near(y: f64, near: Option<E1Root>) -> E1Root {
-    let at = |u: f64, scaled: f64| E1Root { u, ln_y: y.ln(), scaled };
+    let at = |u: f64, scaled: f64| E1Root { u, ratio: (-u).exp(), ln_u: u.ln(), ln_y: y.ln(), scaled };
     if y.is_nan() || y < 0.0 {
         return at(f64::NAN, f64::NAN);
     }
@@ -203,8 +208,8 @@ pub fn e1_inverse_near(y: f64, near: Option<E1Root>) -> E1Root {
     let (mut lo, mut hi) = (-745.0_f64, 6.7_f64);
     let mut v = match near {
         // h(v_near) = ln y_near - ln y and h'(v_near) = -1/scaled_near: a Newton step for free.
-        Some(root) if root.u > 0.0 && root.u.is_finite() && root.scaled.is_finite() => {
-            (root.u.ln() + (root.ln_y - ln_y) * root.scaled).clamp(lo, hi)
+        Some(root) if root.ln_u.is_finite() && root.scaled.is_finite() => {
+            (root.ln_u + (root.ln_y - ln_y) * root.scaled).clamp(lo, hi)
         }
         // E1(u) ≈ -γ - ln u for small u; for large u, E1(u) ≈ e^-u/(u + 1), so
         // u = -ln y - ln(u + 1) by a few fixed-point sweeps.
@@ -219,12 +224,12 @@ pub fn e1_inverse_near(y: f64, near: Option<E1Root>) -> E1Root {
     };
     for _ in 0..200 {
         let u = v.exp();
-        // One evaluation gives both ln E1(u) and the slope dh/dv = -1 / (e^u E1(u)).
-        let (ln_e1_u, scaled) = ln_e1_and_scaled(u, v);
+        // One evaluation gives ln E1(u), the slope dh/dv = -1 / (e^u E1(u)) and e^{-u}.
+        let (ln_e1_u, scaled, ratio) = ln_e1_and_scaled(u, v);
         let h = ln_e1_u - ln_y;
         // ln E1 carries a rounding error of a few ulps of |ln y|: below that, h is noise.
         if h.abs() <= 4.0 * f64::EPSILON * ln_y.abs().max(1.0) {
-            return E1Root { u, ln_y, scaled };
+            return E1Root { u, ratio, ln_u: v, ln_y, scaled };
         }
         // h is decreasing in v: h > 0 means the root lies to the right.
         if h > 0.0 {
@@ -237,11 +242,13 @@ pub fn e1_inverse_near(y: f64, near: Option<E1Root>) -> E1Root {
         let step = (next - v).abs();
         if step <= 4.0 * f64::EPSILON * v.abs().max(1.0) || (next == newton && step <= QUADRATIC_STOP) {
             // The slope barely changes over so short a step.
-            return E1Root { u: next.exp(), ln_y, scaled };
+            let u = next.exp();
+            return E1Root { u, ratio: (-u).exp(), ln_u: next, ln_y, scaled };
         }
         v = next;
     }
-    E1Root { u: v.exp(), ln_y, scaled: f64::NAN }
+    let u = v.exp();
+    E1Root { u, ratio: (-u).exp(), ln_u: v, ln_y, scaled: f64::NAN }
 }
 
 /// `Ψ(R) = E1(-ln R)`, the integral of the `R` evolution rule (see the module docs).
@@ -260,7 +267,7 @@ pub fn psi(sliding_ratio: f64) -> f64 {
 /// nearby `y`, if known.
 pub fn psi_inverse(y: f64, near: Option<E1Root>) -> (f64, E1Root) {
     let root = e1_inverse_near(y, near);
-    ((-root.u).exp(), root)
+    (root.ratio, root)
 }
 
 #[cfg(test)]

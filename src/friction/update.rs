@@ -46,12 +46,12 @@ pub struct Update {
     pub restart: Option<Restart>,
 }
 
-/// The end of one consistency solve: a nearby starting point for the next solve from the same
-/// state (Newton's next trial of the step, or the same step over another `dt`), which then
-/// converges in one or two iterations instead of three or four from `Δp = 0`.
+/// The end of one consistency solve: a starting point for the next solve of the same point
+/// (Newton's next trial of the step, the same step over another `dt`, or the next step), which
+/// then converges in one or two iterations instead of three or four from `Δp = 0`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Restart {
-    /// `R` at the start of the step on the loaded side; a restart from another one is ignored.
+    /// `R` at the start of the step on the loaded side.
     ratio_start: f64,
     /// `Ψ(R)` at the start of the step.
     psi_start: f64,
@@ -114,8 +114,8 @@ pub fn update(
 }
 
 /// [`update`], starting the consistency solve from `restart`, the [`Update::restart`] of an
-/// earlier update of the same point from the same `state`. The result is the same up to the
-/// solver's tolerance; only the work differs.
+/// earlier update of the same point: from the same `state` (another trial of the step), or from
+/// the previous step. The result is the same up to the solver's tolerance; only the work differs.
 pub fn update_from(
     params: &FrictionParams,
     state: &ContactState,
@@ -176,8 +176,9 @@ pub fn update_from(
     }
 
     // Loading: find Δp in (0, |f_trial|/α_t] with ψ(Δp) = |f_trial| - α_t Δp - R(Δp) μ_k f_n z(Δp) = 0.
-    let restart = restart.filter(|r| r.ratio_start == ratio_start);
-    let psi_start = restart.map_or_else(|| psi(ratio_start), |r| r.psi_start);
+    // Ψ(R) at the start is the restart's only if it started from the same R; its Δp and root
+    // are only starting points, good from anywhere nearby (the previous step, say).
+    let psi_start = restart.filter(|r| r.ratio_start == ratio_start).map_or_else(|| psi(ratio_start), |r| r.psi_start);
     // The previous iterate's root starts the next inversion of Ψ.
     let near = std::cell::Cell::new(restart.and_then(|r| r.root));
     let residual = |increment: f64| -> Result<Residual, FrictionError> {
@@ -239,6 +240,9 @@ pub fn update_from(
             0.5 * (lo + hi)
         };
         let step = (next - x).abs();
+        if next == newton && step <= 1e-14 * x {
+            break; // x is the root to rounding: evaluating at `next` would change nothing
+        }
         match residual(next) {
             Ok(r) => {
                 x = next;
@@ -321,11 +325,19 @@ fn solve_structure(
         let a = params.kinetic_static_ratio();
         let fixed = z0 - decay_weight * (z0 - 1.0) + heal_weight * (1.0 - a * z0);
         let slope = 1.0 + decay_weight + heal_weight * a;
+        let inverse_slope = 1.0 / slope;
         let constant = fixed + decay_weight + heal_weight;
-        let z = constant / slope;
+        let z = constant * inverse_slope;
         if z >= 1.0 && z * a <= 1.0 {
-            let z = (z - (slope * z - constant) / slope).clamp(1.0, 1.0 / a);
-            let d_plastic = -0.5 * gamma * params.kappa * ((z0 - 1.0) + (z - 1.0)) / slope;
+            let polished = z - (slope * z - constant) * inverse_slope;
+            let z = if polished < 1.0 {
+                1.0
+            } else if polished * a > 1.0 {
+                params.max_structure()
+            } else {
+                polished
+            };
+            let d_plastic = -0.5 * gamma * params.kappa * ((z0 - 1.0) + (z - 1.0)) * inverse_slope;
             return Ok(Structure { value: z, d_plastic });
         }
     }
