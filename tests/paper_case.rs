@@ -63,8 +63,9 @@ fn mean(v: &[f64]) -> f64 {
     v.iter().sum::<f64>() / v.len() as f64
 }
 
-/// Members of the ensemble that the observations are tested on.
-const MEMBERS: usize = 8;
+/// Members of the ensemble that the observations are tested on: with 8, a rounding-level change
+/// of the solver moved the right-end verdict from 6 to 4 of 8 (README, "Why 32 members").
+const MEMBERS: usize = 32;
 /// Their spread in initial `1/R*`, as a fraction of its range (member `k` moves by `k ε`).
 const EPSILON: f64 = 1e-9;
 
