@@ -3,13 +3,17 @@
 
 use nalgebra::{Complex, DMatrix};
 use slipfront::dynamics::sparse::SymmetricMatrix;
-use slipfront::dynamics::{ContactBoundary, Dynamics, LinearBody, WilsonSettings};
+use slipfront::dynamics::{ContactBoundary, Dynamics, LinearBody, LinearSolver, WilsonSettings};
 use slipfront::friction::FrictionParams;
 
 const THETA: f64 = 1.4;
 
 /// Amplification matrix of the library's step on `(u, v, a)` for `ω = omega`, `Δt = 1`.
 fn library_amplification(omega: f64) -> DMatrix<f64> {
+    solver_amplification(omega, LinearSolver::Full)
+}
+
+fn solver_amplification(omega: f64, linear_solver: LinearSolver) -> DMatrix<f64> {
     let mut columns = Vec::new();
     for c in 0..3 {
         let body = LinearBody {
@@ -31,6 +35,7 @@ fn library_amplification(omega: f64) -> DMatrix<f64> {
             velocity_scale: 1.0,
             max_iterations: 10,
             energy_tolerance: None,
+            linear_solver,
         };
         let mut d = Dynamics::new(body, contact, settings).unwrap();
         let mut unit = [0.0; 3];
@@ -95,4 +100,14 @@ fn the_implemented_scheme_is_unconditionally_stable_and_dissipative() {
     let low = sorted_eigenvalues(library_amplification(1e-3)).iter().map(|z| z.norm()).fold(0.0, f64::max);
     let high = sorted_eigenvalues(library_amplification(1e3)).iter().map(|z| z.norm()).fold(0.0, f64::max);
     assert!(low > 1.0 - 1e-9 && high < 0.8, "ρ(1e-3) = {low}, ρ(1e3) = {high}");
+}
+
+/// The condensed Newton iteration (no contact unknowns here) takes the same step.
+#[test]
+fn the_condensed_solver_takes_the_same_step() {
+    for omega in [1e-3, 1.0, 1e3] {
+        let full = solver_amplification(omega, LinearSolver::Full);
+        let condensed = solver_amplification(omega, LinearSolver::Condensed);
+        assert!((&full - &condensed).amax() <= 1e-12 * full.amax(), "ω Δt = {omega}: {full} vs {condensed}");
+    }
 }

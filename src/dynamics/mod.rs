@@ -2,6 +2,7 @@
 
 pub mod adaptive;
 pub mod body;
+pub mod condensed;
 pub mod contact;
 pub mod sparse;
 pub mod wilson;
@@ -9,4 +10,4 @@ pub mod wilson;
 pub use adaptive::{AdaptiveError, StepControl};
 pub use body::LinearBody;
 pub use contact::{ContactBoundary, ContactPoint};
-pub use wilson::{Dynamics, EnergyLedger, State, StepError, WilsonSettings};
+pub use wilson::{CONDENSE_FROM_DOFS, Dynamics, EnergyLedger, LinearSolver, State, StepError, WilsonSettings};

@@ -26,7 +26,9 @@
 use std::fmt;
 
 use super::body::LinearBody;
+use super::condensed::{Condensation, NewtonMatrix};
 use super::contact::ContactBoundary;
+use super::contact::ContactPoint;
 use super::sparse::{Cholesky, FactorError, SymmetricMatrix};
 use crate::friction::{ContactState, FrictionError, Restart, update_from};
 
@@ -46,13 +48,37 @@ pub struct WilsonSettings {
     /// integrator has created more than `share` of the work put in (or of the contact's
     /// kinetic-strength energy, early on) fails with [`StepError::EnergyCreated`].
     pub energy_tolerance: Option<f64>,
+    /// How each Newton iteration solves for its correction.
+    pub linear_solver: LinearSolver,
 }
 
 impl Default for WilsonSettings {
     fn default() -> Self {
-        Self { theta: 1.4, tolerance: 1e-10, velocity_scale: 1e-3, max_iterations: 40, energy_tolerance: None }
+        Self {
+            theta: 1.4,
+            tolerance: 1e-10,
+            velocity_scale: 1e-3,
+            max_iterations: 40,
+            energy_tolerance: None,
+            linear_solver: LinearSolver::Full,
+        }
     }
 }
+
+/// How each Newton iteration solves for its correction. Both give the same steps.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LinearSolver {
+    /// The whole system `6/τ² M + K + K_c`, refactored (sparse Cholesky) whenever a contact
+    /// tangent changes: cheapest for small bodies, and for steps that change every time.
+    Full,
+    /// Condensed onto the contact ([`super::condensed`]): the body factored once per `τ`, a
+    /// dense system of the contact's unknowns per iteration. For large bodies at a fixed step.
+    Condensed,
+}
+
+/// Bodies with at least this many unknowns are condensed onto their contact when the step is
+/// fixed (see [`LinearSolver`]); the paper's 10 × 1 mesh (22 unknowns) is not.
+pub const CONDENSE_FROM_DOFS: usize = 1000;
 
 /// Kinematic and contact state at one instant.
 #[derive(Debug, Clone)]
@@ -186,7 +212,14 @@ pub struct Dynamics {
     split_steps: u64,
     /// Where each contact point's last update ended, to start the next step's first trial.
     restarts: Vec<Option<Restart>>,
+    /// The body operators of the last few `τ` (most recent last), for [`LinearSolver::Condensed`].
+    condensations: Vec<Condensation>,
+    /// Newton's condensed matrix for `(τ, contact stiffness)`, while they stay the same.
+    condensed_newton: Option<(f64, Vec<f64>, NewtonMatrix)>,
 }
+
+/// How many `τ` keep their factored body operator (a halved step needs another).
+const CONDENSATIONS_KEPT: usize = 3;
 
 /// A saved state of [`Dynamics`] (see [`Dynamics::snapshot`]).
 #[derive(Clone)]
@@ -194,6 +227,15 @@ pub(crate) struct Snapshot {
     pub(crate) state: State,
     ledger: Option<EnergyLedger>,
     imbalance: f64,
+}
+
+/// The contact points' response to trial slips over `τ`.
+struct ContactResponse {
+    /// `w f_t` of each point.
+    weighted_traction: Vec<f64>,
+    /// `-w ∂f_t/∂Δū` of each point (its share of `K_c`).
+    stiffness: Vec<f64>,
+    restarts: Vec<Option<Restart>>,
 }
 
 /// What the Newton loop evaluates at a trial `u_θ`.
@@ -280,6 +322,8 @@ impl Dynamics {
             energy_scale,
             split_steps: 0,
             restarts: Vec::new(),
+            condensations: Vec::new(),
+            condensed_newton: None,
         };
         if dynamics.settings.energy_tolerance.is_some() {
             dynamics.track_energy();
@@ -348,6 +392,9 @@ impl Dynamics {
     }
 
     fn try_step(&mut self, dt: f64) -> Result<(), StepError> {
+        if self.settings.linear_solver == LinearSolver::Condensed {
+            return self.try_step_condensed(dt);
+        }
         let theta = self.settings.theta;
         let tau = theta * dt;
         let s = &self.state;
@@ -402,34 +449,173 @@ impl Dynamics {
     /// `u_θ - u_n`, and the contact tangents; `restarts` (empty, or one per point) are an earlier
     /// trial's, from the same state.
     fn evaluate(&self, du_theta: &[f64], tau: f64, restarts: &[Option<Restart>]) -> Result<Evaluation, StepError> {
+        let (mut residual, acceleration) = self.body_residual(du_theta, tau);
+        let base = self.base_increment(tau);
+        let slips: Vec<f64> = self.contact.points.iter().map(|p| p.interpolate(du_theta) - base).collect();
+        let response = self.contact_response(&slips, tau, restarts)?;
+        for (point, &t) in self.contact.points.iter().zip(&response.weighted_traction) {
+            point.scatter(-t, &mut residual);
+        }
+        Ok(Evaluation { residual, acceleration, contact_stiffness: response.stiffness, restarts: response.restarts })
+    }
+
+    /// The residual of the equation of motion at `t_n + τ` without the contact forces
+    /// (`K u_θ + M a_θ - f⁰ + f_c(0)`), and `a_θ`.
+    fn body_residual(&self, du_theta: &[f64], tau: f64) -> (Vec<f64>, Vec<f64>) {
         let s = &self.state;
-        let n = du_theta.len();
         let acceleration = self.theta_acceleration(du_theta, tau);
         let u_theta: Vec<f64> = s.displacement.iter().zip(du_theta).map(|(u, d)| u + d).collect();
-        let mut residual = vec![0.0; n];
+        let mut residual = vec![0.0; du_theta.len()];
         self.body.stiffness.mul_vec(&u_theta, &mut residual);
         let t_theta = s.time + tau;
-        for i in 0..n {
-            residual[i] +=
+        for (i, r) in residual.iter_mut().enumerate() {
+            *r +=
                 self.body.mass[i] * acceleration[i] - t_theta * self.body.load_rate[i] + self.initial_contact_force[i];
         }
+        (residual, acceleration)
+    }
+
+    /// How far the base moves over `[t_n, t_n + τ]`.
+    fn base_increment(&self, tau: f64) -> f64 {
+        let t = self.state.time;
+        self.contact.base_displacement_at(t + tau) - self.contact.base_displacement_at(t)
+    }
+
+    /// Updates every contact point over `τ` by its relative slip increment.
+    fn contact_response(
+        &self,
+        slips: &[f64],
+        tau: f64,
+        restarts: &[Option<Restart>],
+    ) -> Result<ContactResponse, StepError> {
         let params = &self.contact.params;
-        let base = self.contact.base_displacement_at(t_theta) - self.contact.base_displacement_at(s.time);
-        let mut contact_stiffness = Vec::with_capacity(self.contact.points.len());
-        let mut next_restarts = Vec::with_capacity(self.contact.points.len());
-        for (k, (point, state)) in self.contact.points.iter().zip(&s.contact).enumerate() {
-            let slip = point.interpolate(du_theta) - base;
+        let count = self.contact.points.len();
+        let mut response = ContactResponse {
+            weighted_traction: Vec::with_capacity(count),
+            stiffness: Vec::with_capacity(count),
+            restarts: Vec::with_capacity(count),
+        };
+        for (k, ((point, state), &slip)) in self.contact.points.iter().zip(&self.state.contact).zip(slips).enumerate() {
             let restart = restarts.get(k).copied().flatten();
             let updated = update_from(params, state, slip, tau, restart).map_err(|error| StepError::Friction {
                 point: k,
                 state: *state,
                 error,
             })?;
-            point.scatter(-point.weight * updated.state.traction_t, &mut residual);
-            contact_stiffness.push(-point.weight * updated.tangent);
-            next_restarts.push(updated.restart);
+            response.weighted_traction.push(point.weight * updated.state.traction_t);
+            response.stiffness.push(-point.weight * updated.tangent);
+            response.restarts.push(updated.restart);
         }
-        Ok(Evaluation { residual, acceleration, contact_stiffness, restarts: next_restarts })
+        Ok(response)
+    }
+
+    /// One step with Newton's method condensed onto the contact ([`super::condensed`]).
+    fn try_step_condensed(&mut self, dt: f64) -> Result<(), StepError> {
+        let tau = self.settings.theta * dt;
+        let condensation = self.take_condensation(tau)?;
+        let result = self.newton_condensed(&condensation, dt);
+        self.condensations.push(condensation);
+        result
+    }
+
+    /// The body operator of `τ`, factored now if it is not kept.
+    fn take_condensation(&mut self, tau: f64) -> Result<Condensation, StepError> {
+        if let Some(k) = self.condensations.iter().position(|c| c.tau == tau) {
+            return Ok(self.condensations.remove(k));
+        }
+        if self.condensations.len() >= CONDENSATIONS_KEPT {
+            self.condensations.remove(0);
+        }
+        Condensation::new(&self.body, &self.contact.points, tau).map_err(StepError::Factor)
+    }
+
+    fn newton_condensed(&mut self, c: &Condensation, dt: f64) -> Result<(), StepError> {
+        let tau = self.settings.theta * dt;
+        let mut newton_matrix = self.condensed_newton.take();
+        let points: &[ContactPoint] = &self.contact.points;
+        // w = -A⁻¹ r₀: the body's response without contact forces.
+        let (mut free, _) = self.body_residual(&vec![0.0; self.body.dofs()], tau);
+        free.iter_mut().for_each(|r| *r = -*r);
+        c.solve_body(&mut free);
+        let free_contact: Vec<f64> = c.dofs.iter().map(|&d| free[d]).collect();
+        let s = &self.state;
+        // Predictor: constant acceleration over τ.
+        let mut x: Vec<f64> =
+            c.dofs.iter().map(|&d| tau * s.velocity[d] + 0.5 * tau * tau * s.acceleration[d]).collect();
+        let base = self.base_increment(tau);
+        let evaluate = |x: &[f64], restarts: &[Option<Restart>]| -> Result<(Vec<f64>, ContactResponse), StepError> {
+            let slips: Vec<f64> =
+                points.iter().zip(&c.local).map(|(p, l)| p.shape[0] * x[l[0]] + p.shape[1] * x[l[1]] - base).collect();
+            let response = self.contact_response(&slips, tau, restarts)?;
+            let forces = c.forces(points, &response.weighted_traction);
+            let g = c.compliance_times(&forces);
+            let residual = x.iter().zip(&free_contact).zip(g).map(|((x, w), g)| x - w - g).collect();
+            Ok((residual, response))
+        };
+        // Δu_θ = w + A⁻¹ P F for the contact forces F.
+        let increment = |forces: &[f64]| -> Vec<f64> {
+            let mut du_theta = vec![0.0; free.len()];
+            for (&dof, f) in c.dofs.iter().zip(forces) {
+                du_theta[dof] = *f;
+            }
+            c.solve_body(&mut du_theta);
+            du_theta.iter_mut().zip(&free).for_each(|(u, w)| *u += w);
+            du_theta
+        };
+        let (mut residual, mut response) = evaluate(&x, &self.restarts)?;
+        let mut norm = l2(&residual);
+        let scale = self.settings.velocity_scale.max(f64::MIN_POSITIVE) * tau;
+        let mut last_correction = f64::INFINITY;
+        let result = (|| {
+            for _ in 0..self.settings.max_iterations {
+                let current = matches!(&newton_matrix, Some((t, k, _)) if *t == tau && *k == response.stiffness);
+                if !current {
+                    newton_matrix = None;
+                    let matrix = c.newton_matrix(points, &response.stiffness).map_err(StepError::Factor)?;
+                    newton_matrix = Some((tau, response.stiffness.clone(), matrix));
+                }
+                let (_, _, matrix) = newton_matrix.as_ref().expect("factored above");
+                let mut delta: Vec<f64> = residual.iter().map(|r| -r).collect();
+                matrix.solve_in_place(&mut delta);
+                let correction = max_abs(&delta);
+                if !correction.is_finite() {
+                    return Err(StepError::NonFinite);
+                }
+                if correction <= self.settings.tolerance * max_abs(&x).max(scale) {
+                    // Converged: the correction is taken without evaluating the contact again,
+                    // with the forces linearized over it, F(x + δ) ≈ F(x) - K_c δ.
+                    let mut forces = c.forces(points, &response.weighted_traction);
+                    let change = c.contact_stiffness_times(points, &response.stiffness, &delta);
+                    forces.iter_mut().zip(change).for_each(|(f, dk)| *f -= dk);
+                    return Ok((increment(&forces), response.restarts.clone()));
+                }
+                // Backtracking keeps the residual from growing across stick/slip switches.
+                let mut step_length = 1.0;
+                let (trial, (trial_residual, trial_response), trial_norm) = loop {
+                    let candidate: Vec<f64> = x.iter().zip(&delta).map(|(u, d)| u + step_length * d).collect();
+                    let candidate_eval = evaluate(&candidate, &response.restarts)?;
+                    let candidate_norm = l2(&candidate_eval.0);
+                    if candidate_norm <= norm || step_length < 1.0 / 64.0 {
+                        break (candidate, candidate_eval, candidate_norm);
+                    }
+                    step_length *= 0.5;
+                };
+                last_correction = step_length * correction;
+                x = trial;
+                residual = trial_residual;
+                response = trial_response;
+                norm = trial_norm;
+                if last_correction <= self.settings.tolerance * max_abs(&x).max(scale) {
+                    let forces = c.forces(points, &response.weighted_traction);
+                    return Ok((increment(&forces), response.restarts.clone()));
+                }
+            }
+            Err(StepError::NotConverged { iterations: self.settings.max_iterations, correction: last_correction })
+        })();
+        self.condensed_newton = newton_matrix;
+        let (du_theta, restarts) = result?;
+        let acceleration = self.theta_acceleration(&du_theta, tau);
+        self.finish_step(dt, &acceleration, &restarts)
     }
 
     /// `a_θ = 6/τ² (u_θ - u_n) - 6/τ v_n - 2 a_n`.

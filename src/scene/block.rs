@@ -6,7 +6,7 @@ use super::{
     advance_dynamics_adaptive, segment_sample, step_error,
 };
 use crate::case::{BlockSpec, Case};
-use crate::dynamics::{Dynamics, StepControl, WilsonSettings};
+use crate::dynamics::{CONDENSE_FROM_DOFS, Dynamics, LinearSolver, StepControl, WilsonSettings};
 use crate::fem::{Block, PlaneStrain, StructuredMesh, assemble};
 
 /// Peak memory (bytes) a block of `nx × ny` elements is expected to need: a base of 16 MB plus
@@ -37,10 +37,18 @@ impl BlockScene {
             spec.base_velocity,
             spec.base_ramp_time,
         );
+        // A large body at a fixed step is condensed onto its contact; adaptive steps change τ
+        // every attempt, and each new τ would need the body refactored.
+        let linear_solver = if body.dofs() >= CONDENSE_FROM_DOFS && case.time.tolerance.is_none() {
+            LinearSolver::Condensed
+        } else {
+            LinearSolver::Full
+        };
         let settings = WilsonSettings {
             theta: case.time.theta,
             velocity_scale: spec.base_velocity.abs().max(f64::MIN_POSITIVE),
             energy_tolerance: Some(case.time.energy_tolerance),
+            linear_solver,
             ..WilsonSettings::default()
         };
         let dynamics = Dynamics::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |p| p / 2))?;
