@@ -122,9 +122,11 @@ fn free_vibration_periods_match_the_hand_derived_values() {
 /// The Newton iteration condensed onto the contact (`LinearSolver::Condensed`, the default for
 /// large bodies) against the full one, the independent formulation it replaces, on a 40 × 4
 /// block driven fast. While the contact only loads (to 10 s) every step's nodal displacements
-/// and contact tractions agree to 4e-10 of their size (measured), the order of the Newton
-/// tolerance; the first slips (from about 12 s) are an instability that amplifies any
-/// difference, as the chaos of the paper case shows, and there they agree to 2e-7.
+/// and contact tractions agree to 5e-10 of their size (measured), the order of the Newton
+/// tolerance. The first slips (from about 12 s) are an instability that amplifies any
+/// difference, as the chaos of the paper case shows; there the condensed run must stay as close
+/// to the full one as the full one itself stays to a run with a 100× tighter Newton tolerance
+/// (within a factor 10): solver differences no larger than the tolerance's own.
 #[test]
 fn condensed_newton_follows_the_full_one_through_slip() {
     use slipfront::dynamics::LinearSolver;
@@ -137,28 +139,47 @@ fn condensed_newton_follows_the_full_one_through_slip() {
         "probes.segments=[]",
     ]);
     let mut full = block_scene(&case);
+    let mut tight = block_scene(&case);
     let mut condensed = block_scene(&case);
     full.dynamics_mut().settings.linear_solver = LinearSolver::Full;
+    tight.dynamics_mut().settings.linear_solver = LinearSolver::Full;
+    tight.dynamics_mut().settings.tolerance *= 0.01;
     condensed.dynamics_mut().settings.linear_solver = LinearSolver::Condensed;
-    // Worst relative differences (displacement, traction) while loading, and through the slips.
-    let (mut loading, mut slipping) = ((0.0_f64, 0.0_f64), (0.0_f64, 0.0_f64));
-    let mut slipped = false;
-    for step in 1..=2000 {
-        full.advance(0.01).unwrap();
-        condensed.advance(0.01).unwrap();
-        let (a, b) = (&full.dynamics().state, &condensed.dynamics().state);
-        let largest = |v: &mut dyn Iterator<Item = f64>| v.fold(1e-300_f64, |m, x| m.max(x.abs()));
+    let largest = |v: &mut dyn Iterator<Item = f64>| v.fold(1e-300_f64, |m, x| m.max(x.abs()));
+    // Worst relative differences (displacement, traction) of `b` from `a`.
+    let differences = |a: &BlockScene, b: &BlockScene| {
+        let (a, b) = (&a.dynamics().state, &b.dynamics().state);
         let du = largest(&mut a.displacement.iter().zip(&b.displacement).map(|(x, y)| x - y))
             / largest(&mut a.displacement.iter().copied());
         let dt = largest(&mut a.contact.iter().zip(&b.contact).map(|(x, y)| x.traction_t - y.traction_t))
             / largest(&mut a.contact.iter().map(|c| c.traction_t));
-        let phase = if step <= 1000 { &mut loading } else { &mut slipping };
-        *phase = (phase.0.max(du), phase.1.max(dt));
+        (du, dt)
+    };
+    let worse = |(a, b): (f64, f64), (c, d): (f64, f64)| (a.max(c), b.max(d));
+    let (mut loading, mut slipping, mut tolerance_own) = ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0));
+    let mut slipped = false;
+    for step in 1..=2000 {
+        for scene in [&mut full, &mut tight, &mut condensed] {
+            scene.advance(0.01).unwrap();
+        }
+        let solver = differences(&full, &condensed);
+        if step <= 1000 {
+            loading = worse(loading, solver);
+        } else {
+            slipping = worse(slipping, solver);
+            tolerance_own = worse(tolerance_own, differences(&full, &tight));
+        }
         // A slip event: plastic slip faster than the case's threshold (3 mm/s).
-        slipped |= a.plastic_increment.iter().any(|p| *p > 0.003 * 0.01);
+        slipped |= full.dynamics().state.plastic_increment.iter().any(|p| *p > 0.003 * 0.01);
     }
-    println!("worst relative differences (displacement, traction): loading {loading:?}, through slip {slipping:?}");
+    println!(
+        "worst relative differences (displacement, traction): loading {loading:?}; through slip {slipping:?}, \
+         where a 100x tighter tolerance moves the full run by {tolerance_own:?}"
+    );
     assert!(slipped, "the run must reach slip");
     assert!(loading.0 <= 1e-9 && loading.1 <= 1e-9, "while loading: {loading:?}");
-    assert!(slipping.0 <= 1e-6 && slipping.1 <= 1e-6, "through slip: {slipping:?}");
+    assert!(
+        slipping.0 <= 10.0 * tolerance_own.0 && slipping.1 <= 10.0 * tolerance_own.1,
+        "through slip: {slipping:?} against the tolerance's own {tolerance_own:?}"
+    );
 }

@@ -26,7 +26,7 @@
 use std::fmt;
 
 use super::body::LinearBody;
-use super::condensed::{Condensation, NewtonMatrix};
+use super::condensed::Condensation;
 use super::contact::ContactBoundary;
 use super::contact::ContactPoint;
 use super::sparse::{Cholesky, FactorError, SymmetricMatrix};
@@ -214,8 +214,6 @@ pub struct Dynamics {
     restarts: Vec<Option<Restart>>,
     /// The body operators of the last few `τ` (most recent last), for [`LinearSolver::Condensed`].
     condensations: Vec<Condensation>,
-    /// Newton's condensed matrix for `(τ, contact stiffness)`, while they stay the same.
-    condensed_newton: Option<(f64, Vec<f64>, NewtonMatrix)>,
 }
 
 /// How many `τ` keep their factored body operator (a halved step needs another).
@@ -323,7 +321,6 @@ impl Dynamics {
             split_steps: 0,
             restarts: Vec::new(),
             condensations: Vec::new(),
-            condensed_newton: None,
         };
         if dynamics.settings.energy_tolerance.is_some() {
             dynamics.track_energy();
@@ -520,7 +517,10 @@ impl Dynamics {
 
     /// The body operator of `τ`, factored now if it is not kept.
     fn take_condensation(&mut self, tau: f64) -> Result<Condensation, StepError> {
-        if let Some(k) = self.condensations.iter().position(|c| c.tau == tau) {
+        // The run loop's steps differ from each other by rounding (t_end/steps against the time
+        // reached); an operator within 1e-12 of τ changes the step by less than Newton's
+        // tolerance.
+        if let Some(k) = self.condensations.iter().position(|c| (c.tau - tau).abs() <= 1e-12 * tau) {
             return Ok(self.condensations.remove(k));
         }
         if self.condensations.len() >= CONDENSATIONS_KEPT {
@@ -531,7 +531,6 @@ impl Dynamics {
 
     fn newton_condensed(&mut self, c: &Condensation, dt: f64) -> Result<(), StepError> {
         let tau = self.settings.theta * dt;
-        let mut newton_matrix = self.condensed_newton.take();
         let points: &[ContactPoint] = &self.contact.points;
         // w = -A⁻¹ r₀: the body's response without contact forces.
         let (mut free, _) = self.body_residual(&vec![0.0; self.body.dofs()], tau);
@@ -566,54 +565,47 @@ impl Dynamics {
         let mut norm = l2(&residual);
         let scale = self.settings.velocity_scale.max(f64::MIN_POSITIVE) * tau;
         let mut last_correction = f64::INFINITY;
-        let result = (|| {
-            for _ in 0..self.settings.max_iterations {
-                let current = matches!(&newton_matrix, Some((t, k, _)) if *t == tau && *k == response.stiffness);
-                if !current {
-                    newton_matrix = None;
-                    let matrix = c.newton_matrix(points, &response.stiffness).map_err(StepError::Factor)?;
-                    newton_matrix = Some((tau, response.stiffness.clone(), matrix));
-                }
-                let (_, _, matrix) = newton_matrix.as_ref().expect("factored above");
-                let mut delta: Vec<f64> = residual.iter().map(|r| -r).collect();
-                matrix.solve_in_place(&mut delta);
-                let correction = max_abs(&delta);
-                if !correction.is_finite() {
-                    return Err(StepError::NonFinite);
-                }
-                if correction <= self.settings.tolerance * max_abs(&x).max(scale) {
-                    // Converged: the correction is taken without evaluating the contact again,
-                    // with the forces linearized over it, F(x + δ) ≈ F(x) - K_c δ.
-                    let mut forces = c.forces(points, &response.weighted_traction);
-                    let change = c.contact_stiffness_times(points, &response.stiffness, &delta);
-                    forces.iter_mut().zip(change).for_each(|(f, dk)| *f -= dk);
-                    return Ok((increment(&forces), response.restarts.clone()));
-                }
-                // Backtracking keeps the residual from growing across stick/slip switches.
-                let mut step_length = 1.0;
-                let (trial, (trial_residual, trial_response), trial_norm) = loop {
-                    let candidate: Vec<f64> = x.iter().zip(&delta).map(|(u, d)| u + step_length * d).collect();
-                    let candidate_eval = evaluate(&candidate, &response.restarts)?;
-                    let candidate_norm = l2(&candidate_eval.0);
-                    if candidate_norm <= norm || step_length < 1.0 / 64.0 {
-                        break (candidate, candidate_eval, candidate_norm);
-                    }
-                    step_length *= 0.5;
-                };
-                last_correction = step_length * correction;
-                x = trial;
-                residual = trial_residual;
-                response = trial_response;
-                norm = trial_norm;
-                if last_correction <= self.settings.tolerance * max_abs(&x).max(scale) {
-                    let forces = c.forces(points, &response.weighted_traction);
-                    return Ok((increment(&forces), response.restarts.clone()));
-                }
+        let mut iterations = 0;
+        let (du_theta, restarts) = loop {
+            if iterations == self.settings.max_iterations {
+                return Err(StepError::NotConverged { iterations, correction: last_correction });
             }
-            Err(StepError::NotConverged { iterations: self.settings.max_iterations, correction: last_correction })
-        })();
-        self.condensed_newton = newton_matrix;
-        let (du_theta, restarts) = result?;
+            iterations += 1;
+            let mut delta: Vec<f64> = residual.iter().map(|r| -r).collect();
+            c.solve_newton(points, &response.stiffness, &mut delta).map_err(StepError::Factor)?;
+            let correction = max_abs(&delta);
+            if !correction.is_finite() {
+                return Err(StepError::NonFinite);
+            }
+            if correction <= self.settings.tolerance * max_abs(&x).max(scale) {
+                // Converged: the correction is taken without evaluating the contact again,
+                // with the forces linearized over it, F(x + δ) ≈ F(x) - K_c δ.
+                let mut forces = c.forces(points, &response.weighted_traction);
+                let change = c.contact_stiffness_times(points, &response.stiffness, &delta);
+                forces.iter_mut().zip(change).for_each(|(f, dk)| *f -= dk);
+                break (increment(&forces), response.restarts.clone());
+            }
+            // Backtracking keeps the residual from growing across stick/slip switches.
+            let mut step_length = 1.0;
+            let (trial, (trial_residual, trial_response), trial_norm) = loop {
+                let candidate: Vec<f64> = x.iter().zip(&delta).map(|(u, d)| u + step_length * d).collect();
+                let candidate_eval = evaluate(&candidate, &response.restarts)?;
+                let candidate_norm = l2(&candidate_eval.0);
+                if candidate_norm <= norm || step_length < 1.0 / 64.0 {
+                    break (candidate, candidate_eval, candidate_norm);
+                }
+                step_length *= 0.5;
+            };
+            last_correction = step_length * correction;
+            x = trial;
+            residual = trial_residual;
+            response = trial_response;
+            norm = trial_norm;
+            if last_correction <= self.settings.tolerance * max_abs(&x).max(scale) {
+                let forces = c.forces(points, &response.weighted_traction);
+                break (increment(&forces), response.restarts.clone());
+            }
+        };
         let acceleration = self.theta_acceleration(&du_theta, tau);
         self.finish_step(dt, &acceleration, &restarts)
     }
