@@ -662,7 +662,7 @@ impl Dynamics {
     ) -> Result<(), StepError> {
         let n = self.body.dofs();
         let theta = self.settings.theta;
-        let old = self.state.clone();
+        let old = &self.state;
         let base = self.contact.base_displacement_at(old.time + dt) - self.contact.base_displacement_at(old.time);
         // Work on a copy: a failure below leaves the state as it was.
         let mut next = old.clone();
@@ -690,7 +690,7 @@ impl Dynamics {
         }
         s.time = old.time + dt;
         s.step = old.step + 1;
-        self.state = next;
+        let old = std::mem::replace(&mut self.state, next);
         // Over the next τ = θΔt the slip is about θ times this step's.
         self.restarts = next_restarts;
         let s = &self.state;
