@@ -233,6 +233,21 @@ pub struct WorkPrecisionCurve {
     pub points: Vec<(f64, f64)>,
 }
 
+/// A logarithmic axis labelled at 1, 2 and 5 times powers of ten only: plotters labels every
+/// mesh line, which crowds an axis spanning less than a decade.
+fn log_label(value: f64, scientific: bool) -> String {
+    let exponent = value.log10().floor() as i32;
+    let mantissa = value / 10f64.powi(exponent);
+    match [1.0, 2.0, 5.0, 10.0].iter().find(|m| (mantissa / *m - 1.0).abs() < 1e-6) {
+        Some(&m) if scientific => {
+            let (m, e) = if m == 10.0 { (1.0, exponent + 1) } else { (m, exponent) };
+            format!("{m}e{e}")
+        }
+        Some(&m) => format!("{}", m * 10f64.powi(exponent)),
+        None => String::new(),
+    }
+}
+
 /// Writes a log-log plot of error against wall time, one panel per `(title, curves)`.
 pub fn plot_work_precision(path: &Path, panels: &[(String, Vec<WorkPrecisionCurve>)]) -> Result<(), String> {
     register_font();
@@ -269,8 +284,8 @@ pub fn plot_work_precision(path: &Path, panels: &[(String, Vec<WorkPrecisionCurv
                 .configure_mesh()
                 .x_desc("wall time (s), median")
                 .y_desc("relative error")
-                .x_label_formatter(&|v| format!("{v:.2}"))
-                .y_label_formatter(&|v| format!("{v:.0e}"))
+                .x_label_formatter(&|v| log_label(*v, false))
+                .y_label_formatter(&|v| log_label(*v, true))
                 .label_style(("sans-serif", 15))
                 .draw()
                 .map_err(draw_error)?;
