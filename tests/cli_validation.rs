@@ -344,7 +344,7 @@ fn hostile_scene_values_name_their_key() {
 #[test]
 fn a_mesh_too_large_for_memory_is_refused_with_an_estimate() {
     let b = case("paper_triangular.toml");
-    // 2e10 degrees of freedom: about 75 TB by the estimate, more than any machine here has.
+    // 2e10 degrees of freedom: about 137 TB by the estimate, more than any machine here has.
     let (code, stderr) = run_case(&b, &["scene.nx=100000", "scene.ny=100000"]);
     assert_eq!(code, 2, "{stderr}");
     for part in ["scene.nx × scene.ny = 100000 × 100000 is too large", "2.000e10 degrees of freedom", "TB of memory"]

@@ -10,4 +10,4 @@ pub mod wilson;
 pub use adaptive::{AdaptiveError, StepControl};
 pub use body::LinearBody;
 pub use contact::{ContactBoundary, ContactPoint};
-pub use wilson::{CONDENSE_FROM_DOFS, Dynamics, EnergyLedger, LinearSolver, State, StepError, WilsonSettings};
+pub use wilson::{Dynamics, EnergyLedger, LinearSolver, State, StepError, WilsonSettings, condensation_pays};

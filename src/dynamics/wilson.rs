@@ -80,6 +80,16 @@ pub enum LinearSolver {
 /// fixed (see [`LinearSolver`]); the paper's 10 × 1 mesh (22 unknowns) is not.
 pub const CONDENSE_FROM_DOFS: usize = 1000;
 
+/// ... unless the contact has more unknowns than this: its dense matrices (`8 k²` bytes each)
+/// and their LU (`2k³/3` operations) would outgrow the sparse operator of a long thin body.
+pub const CONDENSE_UP_TO_CONTACT_DOFS: usize = 2048;
+
+/// Whether a fixed-step body of `dofs` unknowns with `contact_dofs` at its contact is better
+/// condensed ([`LinearSolver::Condensed`]).
+pub fn condensation_pays(dofs: usize, contact_dofs: usize) -> bool {
+    dofs >= CONDENSE_FROM_DOFS && contact_dofs <= CONDENSE_UP_TO_CONTACT_DOFS
+}
+
 /// Kinematic and contact state at one instant.
 #[derive(Debug, Clone)]
 pub struct State {
@@ -216,8 +226,9 @@ pub struct Dynamics {
     condensations: Vec<Condensation>,
 }
 
-/// How many `τ` keep their factored body operator (a halved step needs another).
-const CONDENSATIONS_KEPT: usize = 3;
+/// How many `τ` keep their factored body operator (a halved step needs another; each holds a
+/// factor of the whole body).
+const CONDENSATIONS_KEPT: usize = 2;
 
 /// A saved state of [`Dynamics`] (see [`Dynamics::snapshot`]).
 #[derive(Clone)]

@@ -6,16 +6,21 @@ use super::{
     advance_dynamics_adaptive, segment_sample, step_error,
 };
 use crate::case::{BlockSpec, Case};
-use crate::dynamics::{CONDENSE_FROM_DOFS, Dynamics, LinearSolver, StepControl, WilsonSettings};
+use crate::dynamics::{Dynamics, LinearSolver, StepControl, WilsonSettings, condensation_pays};
 use crate::fem::{Block, PlaneStrain, StructuredMesh, assemble};
 
 /// Peak memory (bytes) a block of `nx × ny` elements is expected to need: a base of 16 MB plus
-/// 110 B × log2(n) per degree of freedom `n = 2 (nx+1)(ny+1)`, the sparse factor's fill growing
-/// like `n log n`. Fitted to peak RSS measured here (11 MB, 49 MB and 364 MB at 100×10, 300×30
-/// and 1000×100), which it overestimates by at most 12 %.
+/// 200 B × log2(n) per degree of freedom `n = 2 (nx+1)(ny+1)`, the sparse factor's fill growing
+/// like `n log n`, plus three dense `k × k` matrices where the contact's `k = nx + 1` unknowns
+/// are condensed. Fitted to the peak RSS of 1000×100 measured here (692 MB; the estimate is
+/// 8 % higher); at 300×30 and 100×10 it is 32 % lower and 40 % higher (104 MB and 15 MB
+/// measured). Adaptive runs, which never condense, need less.
 pub fn estimated_memory(nx: usize, ny: usize) -> (f64, f64) {
     let dofs = 2.0 * (nx as f64 + 1.0) * (ny as f64 + 1.0);
-    (dofs, 16.0e6 + 110.0 * dofs * dofs.log2())
+    let contact = nx as f64 + 1.0;
+    let condensed =
+        if condensation_pays(dofs as usize, nx.saturating_add(1)) { 3.0 * 8.0 * contact * contact } else { 0.0 };
+    (dofs, 16.0e6 + 200.0 * dofs * dofs.log2() + condensed)
 }
 
 pub struct BlockScene {
@@ -39,7 +44,7 @@ impl BlockScene {
         );
         // A large body at a fixed step is condensed onto its contact; adaptive steps change τ
         // every attempt, and each new τ would need the body refactored.
-        let linear_solver = if body.dofs() >= CONDENSE_FROM_DOFS && case.time.tolerance.is_none() {
+        let linear_solver = if condensation_pays(body.dofs(), spec.nx + 1) && case.time.tolerance.is_none() {
             LinearSolver::Condensed
         } else {
             LinearSolver::Full
