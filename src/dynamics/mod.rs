@@ -4,6 +4,7 @@ pub mod adaptive;
 pub mod body;
 pub mod condensed;
 pub mod contact;
+mod newton;
 pub mod sparse;
 pub mod wilson;
 

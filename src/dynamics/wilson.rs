@@ -28,7 +28,7 @@ use std::fmt;
 use super::body::LinearBody;
 use super::condensed::Condensation;
 use super::contact::ContactBoundary;
-use super::contact::ContactPoint;
+use super::newton::{NewtonProblem, max_abs, newton};
 use super::sparse::{Cholesky, FactorError, SymmetricMatrix};
 use crate::friction::{ContactState, FrictionError, Restart, update_from};
 
@@ -247,13 +247,66 @@ struct ContactResponse {
     restarts: Vec<Option<Restart>>,
 }
 
-/// What the Newton loop evaluates at a trial `u_θ`.
-struct Evaluation {
-    residual: Vec<f64>,
-    acceleration: Vec<f64>,
-    contact_stiffness: Vec<f64>,
-    /// Where each contact point's update ended, to start the next trial's.
-    restarts: Vec<Option<Restart>>,
+/// The step's system on all unknowns, solved with the sparse Jacobian `6/τ² M + K + K_c`.
+struct FullSystem<'a> {
+    dynamics: &'a mut Dynamics,
+    tau: f64,
+}
+
+impl NewtonProblem for FullSystem<'_> {
+    type Evaluation = ContactResponse;
+
+    fn evaluate(
+        &mut self,
+        du_theta: &[f64],
+        previous: Option<&ContactResponse>,
+    ) -> Result<(Vec<f64>, ContactResponse), StepError> {
+        let restarts = previous.map_or(&self.dynamics.restarts, |p| &p.restarts);
+        self.dynamics.evaluate(du_theta, self.tau, restarts)
+    }
+
+    fn correct(&mut self, evaluation: &ContactResponse, delta: &mut [f64]) -> Result<(), StepError> {
+        self.dynamics.factor_jacobian(self.tau, &evaluation.stiffness)?;
+        self.dynamics.cholesky.solve_in_place(delta);
+        Ok(())
+    }
+}
+
+/// The step's system condensed onto the contact unknowns `x` ([`super::condensed`]):
+/// `x - Pᵀw - G F(x) = 0`.
+struct CondensedSystem<'a> {
+    dynamics: &'a Dynamics,
+    condensation: &'a Condensation,
+    tau: f64,
+    /// How far the base moves over `τ`.
+    base: f64,
+    /// `Pᵀ w`.
+    free_contact: Vec<f64>,
+}
+
+impl NewtonProblem for CondensedSystem<'_> {
+    type Evaluation = ContactResponse;
+
+    fn evaluate(
+        &mut self,
+        x: &[f64],
+        previous: Option<&ContactResponse>,
+    ) -> Result<(Vec<f64>, ContactResponse), StepError> {
+        let (c, points) = (self.condensation, &self.dynamics.contact.points);
+        let slips: Vec<f64> =
+            points.iter().zip(&c.local).map(|(p, l)| p.shape[0] * x[l[0]] + p.shape[1] * x[l[1]] - self.base).collect();
+        let restarts = previous.map_or(&self.dynamics.restarts, |p| &p.restarts);
+        let response = self.dynamics.contact_response(&slips, self.tau, restarts)?;
+        let g = c.compliance_times(&c.forces(points, &response.weighted_traction));
+        let residual = x.iter().zip(&self.free_contact).zip(g).map(|((x, w), g)| x - w - g).collect();
+        Ok((residual, response))
+    }
+
+    fn correct(&mut self, evaluation: &ContactResponse, delta: &mut [f64]) -> Result<(), StepError> {
+        self.condensation
+            .solve_newton(&self.dynamics.contact.points, &evaluation.stiffness, delta)
+            .map_err(StepError::Factor)
+    }
 }
 
 impl Dynamics {
@@ -403,73 +456,47 @@ impl Dynamics {
         if self.settings.linear_solver == LinearSolver::Condensed {
             return self.try_step_condensed(dt);
         }
-        let theta = self.settings.theta;
-        let tau = theta * dt;
-        let s = &self.state;
-        // Predictor: constant acceleration over τ.
-        let mut du_theta: Vec<f64> =
-            s.velocity.iter().zip(&s.acceleration).map(|(v, a)| tau * v + 0.5 * tau * tau * a).collect();
-        let mut eval = self.evaluate(&du_theta, tau, &self.restarts)?;
-        let mut norm = l2(&eval.residual);
-        let scale = self.settings.velocity_scale.max(f64::MIN_POSITIVE) * tau;
-        let mut last_correction = f64::INFINITY;
-        for _ in 0..self.settings.max_iterations {
-            self.factor_jacobian(tau, &eval.contact_stiffness)?;
-            let mut delta: Vec<f64> = eval.residual.iter().map(|r| -r).collect();
-            self.cholesky.solve_in_place(&mut delta);
-            let correction = max_abs(&delta);
-            if !correction.is_finite() {
-                return Err(StepError::NonFinite);
-            }
-            if correction <= self.settings.tolerance * max_abs(&du_theta).max(scale) {
-                // Converged: the correction is taken without evaluating the contact again (its
-                // effect on the residual is of the order of its square).
-                du_theta.iter_mut().zip(&delta).for_each(|(u, d)| *u += d);
-                let acceleration = self.theta_acceleration(&du_theta, tau);
-                return self.finish_step(dt, &acceleration, &eval.restarts);
-            }
-            // Backtracking keeps the residual from growing across stick/slip switches.
-            let mut step_length = 1.0;
-            let (trial, trial_eval, trial_norm) = loop {
-                let candidate: Vec<f64> = du_theta.iter().zip(&delta).map(|(u, d)| u + step_length * d).collect();
-                let candidate_eval = self.evaluate(&candidate, tau, &eval.restarts)?;
-                let candidate_norm = l2(&candidate_eval.residual);
-                if candidate_norm <= norm || step_length < 1.0 / 64.0 {
-                    break (candidate, candidate_eval, candidate_norm);
-                }
-                step_length *= 0.5;
-            };
-            last_correction = step_length * max_abs(&delta);
-            du_theta = trial;
-            eval = trial_eval;
-            norm = trial_norm;
-            if !last_correction.is_finite() {
-                return Err(StepError::NonFinite);
-            }
-            if last_correction <= self.settings.tolerance * max_abs(&du_theta).max(scale) {
-                return self.finish_step(dt, &eval.acceleration, &eval.restarts);
-            }
-        }
-        Err(StepError::NotConverged { iterations: self.settings.max_iterations, correction: last_correction })
+        let tau = self.settings.theta * dt;
+        let predictor = (0..self.body.dofs()).map(|i| self.predictor(i, tau)).collect();
+        let (settings, scale) = (self.settings, self.newton_scale(tau));
+        let converged = newton(&mut FullSystem { dynamics: self, tau }, &settings, scale, predictor)?;
+        let acceleration = self.theta_acceleration(&converged.x, tau);
+        self.finish_step(dt, &acceleration, &converged.evaluation.restarts)
+    }
+
+    /// The predictor of unknown `i` over `τ`: constant acceleration.
+    fn predictor(&self, i: usize, tau: f64) -> f64 {
+        tau * self.state.velocity[i] + 0.5 * tau * tau * self.state.acceleration[i]
+    }
+
+    /// Displacements below which Newton's corrections count as converged on their own scale:
+    /// the drive's velocity over `τ`.
+    fn newton_scale(&self, tau: f64) -> f64 {
+        self.settings.velocity_scale.max(f64::MIN_POSITIVE) * tau
     }
 
     /// Residual of the equation of motion at `t_n + τ` for a trial displacement increment
     /// `u_θ - u_n`, and the contact tangents; `restarts` (empty, or one per point) are an earlier
     /// trial's, from the same state.
-    fn evaluate(&self, du_theta: &[f64], tau: f64, restarts: &[Option<Restart>]) -> Result<Evaluation, StepError> {
-        let (mut residual, acceleration) = self.body_residual(du_theta, tau);
+    fn evaluate(
+        &self,
+        du_theta: &[f64],
+        tau: f64,
+        restarts: &[Option<Restart>],
+    ) -> Result<(Vec<f64>, ContactResponse), StepError> {
+        let mut residual = self.body_residual(du_theta, tau);
         let base = self.base_increment(tau);
         let slips: Vec<f64> = self.contact.points.iter().map(|p| p.interpolate(du_theta) - base).collect();
         let response = self.contact_response(&slips, tau, restarts)?;
         for (point, &t) in self.contact.points.iter().zip(&response.weighted_traction) {
             point.scatter(-t, &mut residual);
         }
-        Ok(Evaluation { residual, acceleration, contact_stiffness: response.stiffness, restarts: response.restarts })
+        Ok((residual, response))
     }
 
-    /// The residual of the equation of motion at `t_n + τ` without the contact forces
-    /// (`K u_θ + M a_θ - f⁰ + f_c(0)`), and `a_θ`.
-    fn body_residual(&self, du_theta: &[f64], tau: f64) -> (Vec<f64>, Vec<f64>) {
+    /// The residual of the equation of motion at `t_n + τ` without the contact forces:
+    /// `K u_θ + M a_θ - f⁰ + f_c(0)`.
+    fn body_residual(&self, du_theta: &[f64], tau: f64) -> Vec<f64> {
         let s = &self.state;
         let acceleration = self.theta_acceleration(du_theta, tau);
         let u_theta: Vec<f64> = s.displacement.iter().zip(du_theta).map(|(u, d)| u + d).collect();
@@ -480,7 +507,7 @@ impl Dynamics {
             *r +=
                 self.body.mass[i] * acceleration[i] - t_theta * self.body.load_rate[i] + self.initial_contact_force[i];
         }
-        (residual, acceleration)
+        residual
     }
 
     /// How far the base moves over `[t_n, t_n + τ]`.
@@ -542,83 +569,36 @@ impl Dynamics {
 
     fn newton_condensed(&mut self, c: &Condensation, dt: f64) -> Result<(), StepError> {
         let tau = self.settings.theta * dt;
-        let points: &[ContactPoint] = &self.contact.points;
         // w = -A⁻¹ r₀: the body's response without contact forces.
-        let (mut free, _) = self.body_residual(&vec![0.0; self.body.dofs()], tau);
+        let mut free = self.body_residual(&vec![0.0; self.body.dofs()], tau);
         free.iter_mut().for_each(|r| *r = -*r);
         c.solve_body(&mut free);
-        let free_contact: Vec<f64> = c.dofs.iter().map(|&d| free[d]).collect();
-        let s = &self.state;
-        // Predictor: constant acceleration over τ.
-        let mut x: Vec<f64> =
-            c.dofs.iter().map(|&d| tau * s.velocity[d] + 0.5 * tau * tau * s.acceleration[d]).collect();
-        let base = self.base_increment(tau);
-        let evaluate = |x: &[f64], restarts: &[Option<Restart>]| -> Result<(Vec<f64>, ContactResponse), StepError> {
-            let slips: Vec<f64> =
-                points.iter().zip(&c.local).map(|(p, l)| p.shape[0] * x[l[0]] + p.shape[1] * x[l[1]] - base).collect();
-            let response = self.contact_response(&slips, tau, restarts)?;
-            let forces = c.forces(points, &response.weighted_traction);
-            let g = c.compliance_times(&forces);
-            let residual = x.iter().zip(&free_contact).zip(g).map(|((x, w), g)| x - w - g).collect();
-            Ok((residual, response))
+        let predictor = c.dofs.iter().map(|&d| self.predictor(d, tau)).collect();
+        let (settings, scale) = (self.settings, self.newton_scale(tau));
+        let mut system = CondensedSystem {
+            dynamics: self,
+            condensation: c,
+            tau,
+            base: self.base_increment(tau),
+            free_contact: c.dofs.iter().map(|&d| free[d]).collect(),
         };
-        // Δu_θ = w + A⁻¹ P F for the contact forces F.
-        let increment = |forces: &[f64]| -> Vec<f64> {
-            let mut du_theta = vec![0.0; free.len()];
-            for (&dof, f) in c.dofs.iter().zip(forces) {
-                du_theta[dof] = *f;
-            }
-            c.solve_body(&mut du_theta);
-            du_theta.iter_mut().zip(&free).for_each(|(u, w)| *u += w);
-            du_theta
-        };
-        let (mut residual, mut response) = evaluate(&x, &self.restarts)?;
-        let mut norm = l2(&residual);
-        let scale = self.settings.velocity_scale.max(f64::MIN_POSITIVE) * tau;
-        let mut last_correction = f64::INFINITY;
-        let mut iterations = 0;
-        let (du_theta, restarts) = loop {
-            if iterations == self.settings.max_iterations {
-                return Err(StepError::NotConverged { iterations, correction: last_correction });
-            }
-            iterations += 1;
-            let mut delta: Vec<f64> = residual.iter().map(|r| -r).collect();
-            c.solve_newton(points, &response.stiffness, &mut delta).map_err(StepError::Factor)?;
-            let correction = max_abs(&delta);
-            if !correction.is_finite() {
-                return Err(StepError::NonFinite);
-            }
-            if correction <= self.settings.tolerance * max_abs(&x).max(scale) {
-                // Converged: the correction is taken without evaluating the contact again,
-                // with the forces linearized over it, F(x + δ) ≈ F(x) - K_c δ.
-                let mut forces = c.forces(points, &response.weighted_traction);
-                let change = c.contact_stiffness_times(points, &response.stiffness, &delta);
-                forces.iter_mut().zip(change).for_each(|(f, dk)| *f -= dk);
-                break (increment(&forces), response.restarts.clone());
-            }
-            // Backtracking keeps the residual from growing across stick/slip switches.
-            let mut step_length = 1.0;
-            let (trial, (trial_residual, trial_response), trial_norm) = loop {
-                let candidate: Vec<f64> = x.iter().zip(&delta).map(|(u, d)| u + step_length * d).collect();
-                let candidate_eval = evaluate(&candidate, &response.restarts)?;
-                let candidate_norm = l2(&candidate_eval.0);
-                if candidate_norm <= norm || step_length < 1.0 / 64.0 {
-                    break (candidate, candidate_eval, candidate_norm);
-                }
-                step_length *= 0.5;
-            };
-            last_correction = step_length * correction;
-            x = trial;
-            residual = trial_residual;
-            response = trial_response;
-            norm = trial_norm;
-            if last_correction <= self.settings.tolerance * max_abs(&x).max(scale) {
-                let forces = c.forces(points, &response.weighted_traction);
-                break (increment(&forces), response.restarts.clone());
-            }
-        };
+        let converged = newton(&mut system, &settings, scale, predictor)?;
+        // Δu_θ = w + A⁻¹ P F for the contact forces F, linearized over a correction taken
+        // without evaluating: F(x + δ) ≈ F(x) - K_c δ.
+        let points = &self.contact.points;
+        let mut forces = c.forces(points, &converged.evaluation.weighted_traction);
+        if let Some(delta) = &converged.unevaluated {
+            let change = c.contact_stiffness_times(points, &converged.evaluation.stiffness, delta);
+            forces.iter_mut().zip(change).for_each(|(f, dk)| *f -= dk);
+        }
+        let mut du_theta = vec![0.0; free.len()];
+        for (&dof, f) in c.dofs.iter().zip(&forces) {
+            du_theta[dof] = *f;
+        }
+        c.solve_body(&mut du_theta);
+        du_theta.iter_mut().zip(&free).for_each(|(u, w)| *u += w);
         let acceleration = self.theta_acceleration(&du_theta, tau);
-        self.finish_step(dt, &acceleration, &restarts)
+        self.finish_step(dt, &acceleration, &converged.evaluation.restarts)
     }
 
     /// `a_θ = 6/τ² (u_θ - u_n) - 6/τ v_n - 2 a_n`.
@@ -794,12 +774,4 @@ impl Dynamics {
     pub fn imbalance(&self) -> f64 {
         self.imbalance
     }
-}
-
-fn l2(x: &[f64]) -> f64 {
-    x.iter().map(|v| v * v).sum::<f64>().sqrt()
-}
-
-fn max_abs(x: &[f64]) -> f64 {
-    x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
 }
