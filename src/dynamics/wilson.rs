@@ -208,7 +208,6 @@ pub struct Dynamics {
     pub state: State,
     initial_traction: Vec<f64>,
     initial_contact_force: Vec<f64>,
-    imbalance: f64,
     jacobian: SymmetricMatrix,
     diagonal: Vec<usize>,
     stiffness_entries: Vec<usize>,
@@ -235,7 +234,6 @@ const CONDENSATIONS_KEPT: usize = 2;
 pub(crate) struct Snapshot {
     pub(crate) state: State,
     ledger: Option<EnergyLedger>,
-    imbalance: f64,
 }
 
 /// The contact points' response to trial slips over `τ`.
@@ -373,7 +371,6 @@ impl Dynamics {
             settings,
             initial_traction,
             initial_contact_force,
-            imbalance: 0.0,
             jacobian,
             diagonal,
             stiffness_entries,
@@ -442,14 +439,13 @@ impl Dynamics {
 
     /// Everything a step changes, to undo a trial step.
     pub(crate) fn snapshot(&self) -> Snapshot {
-        Snapshot { state: self.state.clone(), ledger: self.ledger, imbalance: self.imbalance }
+        Snapshot { state: self.state.clone(), ledger: self.ledger }
     }
 
     /// Returns to `snapshot`.
     pub(crate) fn restore(&mut self, snapshot: Snapshot) {
         self.state = snapshot.state;
         self.ledger = snapshot.ledger;
-        self.imbalance = snapshot.imbalance;
     }
 
     fn try_step(&mut self, dt: f64) -> Result<(), StepError> {
@@ -642,7 +638,7 @@ impl Dynamics {
     }
 
     /// Interpolates back to `t_{n+1}`, advances the contact states over `Δt`, and updates the
-    /// equilibrium imbalance and the energy ledger.
+    /// energy ledger.
     /// `restarts` are the points' updates over `τ = θΔt`: their slip, scaled by `1/θ`, starts the
     /// updates over `Δt`.
     fn finish_step(
@@ -684,21 +680,6 @@ impl Dynamics {
         let old = std::mem::replace(&mut self.state, next);
         // Over the next τ = θΔt the slip is about θ times this step's.
         self.restarts = next_restarts;
-        let s = &self.state;
-
-        // Imbalance of M a + K u = f⁰ + f_c - f_c(0) at t_{n+1} (Wilson enforces it at t_n + τ).
-        let mut imbalance = vec![0.0; n];
-        self.body.stiffness.mul_vec(&s.displacement, &mut imbalance);
-        for (i, e) in imbalance.iter_mut().enumerate() {
-            *e = s.time * self.body.load_rate[i]
-                - self.initial_contact_force[i]
-                - self.body.mass[i] * s.acceleration[i]
-                - *e;
-        }
-        for (point, c) in self.contact.points.iter().zip(&s.contact) {
-            point.scatter(point.weight * c.traction_t, &mut imbalance);
-        }
-        self.imbalance = max_abs(&imbalance);
 
         if let Some(mut ledger) = self.ledger.take() {
             let power_base = |state: &State| -> f64 {
@@ -768,10 +749,22 @@ impl Dynamics {
         self.split_steps
     }
 
-    /// Largest nodal imbalance of the total equation at the end of the last step (N/m or Pa).
-    /// Wilson's method enforces equilibrium at `t_n + θΔt`, so this is the interpolation error,
-    /// not an accumulated drift.
+    /// Largest nodal imbalance of the total equation `M a + K u = f⁰ + f_c - f_c(0)` in the
+    /// current state (N/m or Pa), computed when asked. Wilson's method enforces equilibrium at
+    /// `t_n + θΔt`, so this is the interpolation error, not an accumulated drift.
     pub fn imbalance(&self) -> f64 {
-        self.imbalance
+        let s = &self.state;
+        let mut imbalance = vec![0.0; self.body.dofs()];
+        self.body.stiffness.mul_vec(&s.displacement, &mut imbalance);
+        for (i, e) in imbalance.iter_mut().enumerate() {
+            *e = s.time * self.body.load_rate[i]
+                - self.initial_contact_force[i]
+                - self.body.mass[i] * s.acceleration[i]
+                - *e;
+        }
+        for (point, c) in self.contact.points.iter().zip(&s.contact) {
+            point.scatter(point.weight * c.traction_t, &mut imbalance);
+        }
+        max_abs(&imbalance)
     }
 }
