@@ -246,7 +246,11 @@ fn long_stress_rows() {
         (SPRING, &["time.t_end=1e6", "time.dt=0.1"]),
     ]);
     // 1e6 s of the paper case at dt = 0.1 s: the energy the integrator creates in each slip
-    // adds up to 1 % of the work by about 4140 s, where the energy check stops the run and
-    // names time.dt (at dt = 0.01 s the same span is 1e8 steps, about two hours here).
-    refused(PAPER, &["time.t_end=1e6", "time.dt=0.1"], "time.dt", 45_000);
+    // adds up to 1 % of the work within the first few thousand seconds, where the energy check
+    // stops the run and names time.dt (at dt = 0.01 s the same span is 1e8 steps). When is
+    // chaotic, like the events that create the energy: 8 runs whose structure0 differs by
+    // k·1e-9 stop between steps 43 848 and 64 299 (median 51 600), and a rounding-level change
+    // of the solver moved this run from step 41 399 to 55 037. The bound, 1 % of the 1e7 steps,
+    // is 1.5 times the latest of those.
+    refused(PAPER, &["time.t_end=1e6", "time.dt=0.1"], "time.dt", 100_000);
 }
