@@ -230,6 +230,10 @@ impl Sink for RerunSink {
         default_blueprint(layout, &segments, &nodes, spatial, self.plan.spec.magnification)
             .send(rec, rerun::blueprint::BlueprintActivation { make_active: true, make_default: true })
             .map_err(rerun_error)?;
+        // The columns go to the file directly (`send_columns` bypasses the batcher): without a
+        // flush here, a fast run's first columns can reach the file before the run description,
+        // and a file cut early (an interrupted run, a full disk) would lack it.
+        rec.flush_blocking().map_err(|e| SinkError(format!("cannot flush the recording: {e}")))?;
         self.values = vec![Vec::with_capacity(ROWS_PER_CHUNK); plan.len()];
         self.series = plan.into_iter().map(|s| (s.path, s.source)).collect();
         self.spacetime = vec![0.0; SPACETIME_ROWS * layout.segments.len()];
