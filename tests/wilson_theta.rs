@@ -20,7 +20,6 @@ fn solver_amplification(omega: f64, linear_solver: LinearSolver) -> DMatrix<f64>
             mass: vec![1.0],
             stiffness: SymmetricMatrix::from_triplets(1, &[(0, 0, omega * omega)]),
             load_rate: vec![0.0],
-            ordering: None,
         };
         let contact = ContactBoundary {
             params: FrictionParams::paper(),

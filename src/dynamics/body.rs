@@ -13,10 +13,6 @@ pub struct LinearBody {
     /// External load rate `ḟ⁰`, constant in time; the load is `f⁰(t) = ḟ⁰ t` beyond the initial
     /// equilibrium.
     pub load_rate: Vec<f64>,
-    /// A fill-reducing order of the unknowns (`order[new] = old`) where the body knows one
-    /// better than a general heuristic (a structured mesh); used for the factor the condensed
-    /// solver keeps.
-    pub ordering: Option<Vec<usize>>,
 }
 
 impl LinearBody {

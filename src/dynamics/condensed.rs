@@ -65,7 +65,7 @@ impl Condensation {
         let mut triplets: Vec<(usize, usize, f64)> = body.stiffness.entries().collect();
         triplets.extend((0..n).map(|i| (i, i, c0 * body.mass[i])));
         let matrix = SymmetricMatrix::from_triplets(n, &triplets);
-        let operator = SupernodalCholesky::new(&matrix, body.ordering.as_deref())?;
+        let operator = SupernodalCholesky::new(&matrix)?;
 
         let mut dofs: Vec<usize> = points.iter().flat_map(|p| p.dofs).collect();
         dofs.sort_unstable();

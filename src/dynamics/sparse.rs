@@ -198,9 +198,8 @@ pub struct SupernodalCholesky {
 }
 
 impl SupernodalCholesky {
-    /// Analyzes and factors `matrix`, which must be positive definite, in the fill-reducing
-    /// `ordering` (`order[new] = old`) if given, else in faer's approximate minimum degree.
-    pub fn new(matrix: &SymmetricMatrix, ordering: Option<&[usize]>) -> Result<Self, FactorError> {
+    /// Analyzes and factors `matrix`, which must be positive definite.
+    pub fn new(matrix: &SymmetricMatrix) -> Result<Self, FactorError> {
         use faer::dyn_stack::{MemBuffer, MemStack};
         use faer::linalg::cholesky::llt::factor::LltRegularization;
         use faer::sparse::linalg::SupernodalThreshold;
@@ -210,21 +209,9 @@ impl SupernodalCholesky {
             supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
             ..Default::default()
         };
-        let ordering = ordering.filter(|order| order.len() == matrix.size());
-        let inverse = ordering.map(|order| {
-            let mut inverse = vec![0; order.len()];
-            for (new, &old) in order.iter().enumerate() {
-                inverse[old] = new;
-            }
-            inverse
-        });
-        let custom = match (ordering, &inverse) {
-            (Some(order), Some(inverse)) => Some(faer::perm::PermRef::new_checked(order, inverse, order.len())),
-            _ => None,
-        };
-        let ordering = custom.map_or(SymmetricOrdering::Amd, SymmetricOrdering::Custom);
-        let symbolic = factorize_symbolic_cholesky(matrix.pattern.as_ref(), Side::Lower, ordering, params)
-            .map_err(|_| FactorError::OutOfMemory)?;
+        let symbolic =
+            factorize_symbolic_cholesky(matrix.pattern.as_ref(), Side::Lower, SymmetricOrdering::Amd, params)
+                .map_err(|_| FactorError::OutOfMemory)?;
         let mut values = Vec::new();
         values.try_reserve_exact(symbolic.len_val()).map_err(|_| FactorError::OutOfMemory)?;
         values.resize(symbolic.len_val(), 0.0);

@@ -92,12 +92,7 @@ pub fn assemble(
             }
         }
     }
-    let body = LinearBody {
-        mass,
-        stiffness: SymmetricMatrix::from_triplets(n, &triplets),
-        load_rate: vec![0.0; n],
-        ordering: Some(mesh.nested_dissection()),
-    };
+    let body = LinearBody { mass, stiffness: SymmetricMatrix::from_triplets(n, &triplets), load_rate: vec![0.0; n] };
     let loading_direction = if base_velocity < 0.0 { -1.0 } else { 1.0 };
     let contact =
         ContactBoundary { params, points, traction_n: tractions, base_velocity, base_ramp, loading_direction };

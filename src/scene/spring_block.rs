@@ -23,7 +23,6 @@ impl SpringBlockScene {
             mass: vec![spec.mass],
             stiffness: SymmetricMatrix::from_triplets(1, &[(0, 0, spec.stiffness)]),
             load_rate: vec![spec.stiffness * spec.velocity],
-            ordering: None,
         };
         // The spring pulls the block along v; friction on the block opposes it.
         let contact = ContactBoundary {
