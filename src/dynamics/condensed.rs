@@ -47,14 +47,13 @@ pub(crate) struct Condensation {
     operator: SupernodalCholesky,
     /// The body's degree of freedom of each contact unknown, ascending.
     pub(crate) dofs: Vec<usize>,
-    /// The contact unknowns each point interpolates.
-    pub(crate) local: Vec<[usize; 2]>,
+    /// The contact points with their degrees of freedom renumbered to contact unknowns, so that
+    /// [`ContactPoint::interpolate`] and [`ContactPoint::scatter`] work on `k`-vectors.
+    pub(crate) points: Vec<ContactPoint>,
     /// `G = Pᵀ A⁻¹ P` (`k × k`, symmetric).
     compliance: Mat<f64>,
     /// The latest factored Newton matrix, the preconditioner of the next.
     newton: std::cell::RefCell<Option<NewtonMatrix>>,
-    /// How many Newton matrices were factored, and solved by GMRES instead.
-    pub(crate) counts: std::cell::Cell<(u64, u64)>,
 }
 
 impl Condensation {
@@ -71,7 +70,7 @@ impl Condensation {
         dofs.sort_unstable();
         dofs.dedup();
         let index = |dof: usize| dofs.binary_search(&dof).expect("every point's dofs are listed");
-        let local = points.iter().map(|p| [index(p.dofs[0]), index(p.dofs[1])]).collect();
+        let local_points = points.iter().map(|p| ContactPoint { dofs: p.dofs.map(index), ..*p }).collect();
 
         let k = dofs.len();
         let mut compliance = Mat::<f64>::zeros(k, k);
@@ -90,15 +89,7 @@ impl Condensation {
                 }
             }
         }
-        Ok(Self {
-            tau,
-            operator,
-            dofs,
-            local,
-            compliance,
-            newton: std::cell::RefCell::new(None),
-            counts: std::cell::Cell::new((0, 0)),
-        })
+        Ok(Self { tau, operator, dofs, points: local_points, compliance, newton: std::cell::RefCell::new(None) })
     }
 
     /// Number of contact unknowns `k`.
@@ -127,56 +118,41 @@ impl Condensation {
     }
 
     /// `F = Σ w Ñᵀ f_t` on the contact unknowns, for each point's `weight × traction`.
-    pub(crate) fn forces(&self, points: &[ContactPoint], weighted_traction: &[f64]) -> Vec<f64> {
+    pub(crate) fn forces(&self, weighted_traction: &[f64]) -> Vec<f64> {
         let mut forces = vec![0.0; self.size()];
-        for ((point, local), &t) in points.iter().zip(&self.local).zip(weighted_traction) {
-            forces[local[0]] += point.shape[0] * t;
-            forces[local[1]] += point.shape[1] * t;
+        for (point, &t) in self.points.iter().zip(weighted_traction) {
+            point.scatter(t, &mut forces);
         }
         forces
     }
 
     /// `K_c δ` for each point's contact stiffness `-w ∂f_t/∂Δū`.
-    pub(crate) fn contact_stiffness_times(
-        &self,
-        points: &[ContactPoint],
-        stiffness: &[f64],
-        delta: &[f64],
-    ) -> Vec<f64> {
+    pub(crate) fn contact_stiffness_times(&self, stiffness: &[f64], delta: &[f64]) -> Vec<f64> {
         let mut out = vec![0.0; self.size()];
-        for ((point, local), &k) in points.iter().zip(&self.local).zip(stiffness) {
-            let [n0, n1] = point.shape;
-            let slip = n0 * delta[local[0]] + n1 * delta[local[1]];
-            out[local[0]] += k * n0 * slip;
-            out[local[1]] += k * n1 * slip;
+        for (point, &k) in self.points.iter().zip(stiffness) {
+            point.scatter(k * point.interpolate(delta), &mut out);
         }
         out
     }
 
     /// `(I + G K_c) v`.
-    fn newton_times(&self, points: &[ContactPoint], stiffness: &[f64], v: &[f64]) -> Vec<f64> {
-        let kv = self.contact_stiffness_times(points, stiffness, v);
+    fn newton_times(&self, stiffness: &[f64], v: &[f64]) -> Vec<f64> {
+        let kv = self.contact_stiffness_times(stiffness, v);
         let gkv = self.compliance_times(&kv);
         v.iter().zip(gkv).map(|(a, b)| a + b).collect()
     }
 
     /// Solves Newton's system `(I + G K_c) δ = rhs` in place: by the kept LU if `K_c` is the
     /// same, else by GMRES preconditioned with it, else by a new LU.
-    pub(crate) fn solve_newton(
-        &self,
-        points: &[ContactPoint],
-        stiffness: &[f64],
-        rhs: &mut [f64],
-    ) -> Result<(), FactorError> {
+    pub(crate) fn solve_newton(&self, stiffness: &[f64], rhs: &mut [f64]) -> Result<(), FactorError> {
         let mut kept = self.newton.borrow_mut();
-        let (factored, by_gmres) = self.counts.get();
         if let Some(matrix) = kept.as_ref() {
             if matrix.stiffness == stiffness {
                 matrix.solve_in_place(rhs);
                 return Ok(());
             }
             let solution = gmres(
-                |v| self.newton_times(points, stiffness, v),
+                |v| self.newton_times(stiffness, v),
                 |v| matrix.solve_in_place(v),
                 rhs,
                 GMRES_TOLERANCE,
@@ -184,24 +160,22 @@ impl Condensation {
             );
             if let Some(solution) = solution {
                 rhs.copy_from_slice(&solution);
-                self.counts.set((factored, by_gmres + 1));
                 return Ok(());
             }
         }
         *kept = None;
-        let matrix = self.newton_matrix(points, stiffness)?;
+        let matrix = self.newton_matrix(stiffness)?;
         matrix.solve_in_place(rhs);
         *kept = Some(matrix);
-        self.counts.set((factored + 1, by_gmres));
         Ok(())
     }
 
     /// Factors Newton's matrix `I + G K_c` (dense LU with partial pivoting).
-    fn newton_matrix(&self, points: &[ContactPoint], stiffness: &[f64]) -> Result<NewtonMatrix, FactorError> {
+    fn newton_matrix(&self, stiffness: &[f64]) -> Result<NewtonMatrix, FactorError> {
         let k = self.size();
         let mut matrix = Mat::<f64>::identity(k, k);
         // (G K_c)[:, b] = Σ_p k_p N_a N_b G[:, a].
-        for ((point, local), &kp) in points.iter().zip(&self.local).zip(stiffness) {
+        for (point, &kp) in self.points.iter().zip(stiffness) {
             if kp == 0.0 {
                 continue;
             }
@@ -211,8 +185,9 @@ impl Condensation {
                     if scale == 0.0 {
                         continue;
                     }
-                    let source = self.compliance.col(local[a]);
-                    let target = matrix.as_mut().col_mut(local[b]).try_as_col_major_mut().expect("contiguous column");
+                    let source = self.compliance.col(point.dofs[a]);
+                    let target =
+                        matrix.as_mut().col_mut(point.dofs[b]).try_as_col_major_mut().expect("contiguous column");
                     let source = source.try_as_col_major().expect("contiguous column");
                     for (t, g) in target.as_slice_mut().iter_mut().zip(source.as_slice()) {
                         *t += scale * g;

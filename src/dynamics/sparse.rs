@@ -174,12 +174,8 @@ impl Cholesky {
     /// Solves `A x = b` in place (`rhs` holds `b` on entry, `x` on exit).
     pub fn solve_in_place(&self, rhs: &mut [f64]) {
         let n = rhs.len();
-        self.solve_columns_in_place(faer::MatMut::from_column_major_slice_mut(rhs, n, 1));
-    }
-
-    /// Solves `A X = B` in place for every column of `rhs`.
-    pub fn solve_columns_in_place(&self, rhs: faer::MatMut<'_, f64>) {
-        match self.numeric.as_ref().expect("factor() must succeed before solving") {
+        let rhs = faer::MatMut::from_column_major_slice_mut(rhs, n, 1);
+        match self.numeric.as_ref().expect("factor() must succeed before solve_in_place()") {
             Factors::Llt(llt) => llt.solve_in_place(rhs),
             Factors::Lu(lu) => lu.solve_in_place(rhs),
         }

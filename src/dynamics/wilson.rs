@@ -290,20 +290,17 @@ impl NewtonProblem for CondensedSystem<'_> {
         x: &[f64],
         previous: Option<&ContactResponse>,
     ) -> Result<(Vec<f64>, ContactResponse), StepError> {
-        let (c, points) = (self.condensation, &self.dynamics.contact.points);
-        let slips: Vec<f64> =
-            points.iter().zip(&c.local).map(|(p, l)| p.shape[0] * x[l[0]] + p.shape[1] * x[l[1]] - self.base).collect();
+        let c = self.condensation;
+        let slips: Vec<f64> = c.points.iter().map(|p| p.interpolate(x) - self.base).collect();
         let restarts = previous.map_or(&self.dynamics.restarts, |p| &p.restarts);
         let response = self.dynamics.contact_response(&slips, self.tau, restarts)?;
-        let g = c.compliance_times(&c.forces(points, &response.weighted_traction));
+        let g = c.compliance_times(&c.forces(&response.weighted_traction));
         let residual = x.iter().zip(&self.free_contact).zip(g).map(|((x, w), g)| x - w - g).collect();
         Ok((residual, response))
     }
 
     fn correct(&mut self, evaluation: &ContactResponse, delta: &mut [f64]) -> Result<(), StepError> {
-        self.condensation
-            .solve_newton(&self.dynamics.contact.points, &evaluation.stiffness, delta)
-            .map_err(StepError::Factor)
+        self.condensation.solve_newton(&evaluation.stiffness, delta).map_err(StepError::Factor)
     }
 }
 
@@ -581,10 +578,9 @@ impl Dynamics {
         let converged = newton(&mut system, &settings, scale, predictor)?;
         // Δu_θ = w + A⁻¹ P F for the contact forces F, linearized over a correction taken
         // without evaluating: F(x + δ) ≈ F(x) - K_c δ.
-        let points = &self.contact.points;
-        let mut forces = c.forces(points, &converged.evaluation.weighted_traction);
+        let mut forces = c.forces(&converged.evaluation.weighted_traction);
         if let Some(delta) = &converged.unevaluated {
-            let change = c.contact_stiffness_times(points, &converged.evaluation.stiffness, delta);
+            let change = c.contact_stiffness_times(&converged.evaluation.stiffness, delta);
             forces.iter_mut().zip(change).for_each(|(f, dk)| *f -= dk);
         }
         let mut du_theta = vec![0.0; free.len()];
