@@ -1,4 +1,4 @@
-//! The exponential integral `E1` and its inverse.
+//! The exponential integral `E1`, and `Ψ` of the normal sliding ratio through it.
 //!
 //! The evolution rule of the normal sliding ratio, `Ṙ = -r ln(R) Λ` (MODEL.md), integrates in
 //! closed form along the plastic slip `p`:
@@ -7,7 +7,8 @@
 //!
 //! `Ψ` maps `[0, 1)` onto `[0, ∞)`, so the update is exact, starts from `R = 0` (the traction
 //! reversal every stick-slip cycle passes through) without the `ln 0` singularity, and never lets
-//! `R` exceed 1.
+//! `R` exceed 1. The update solves for `v = ln(-ln R)`, in which both `R` and `Ψ(R)` are
+//! explicit ([`psi_at_ln_u`]), so that no inverse of `E1` is needed.
 
 /// Euler–Mascheroni constant.
 const EULER_GAMMA: f64 = 0.577_215_664_901_532_9;
@@ -40,23 +41,6 @@ const TAYLOR_LIMIT: f64 = 24.0;
 
 /// Spacing of the Taylor centres: `|t| ≤ 1/4` from the nearest one.
 const TAYLOR_SPACING: f64 = 0.5;
-
-/// `ln E1(u)`, accurate where `E1(u)` itself would underflow (large `u`).
-pub fn ln_e1(u: f64) -> f64 {
-    if u.is_infinite() { f64::NEG_INFINITY } else { ln_e1_and_scaled(u, u.ln()).0 }
-}
-
-/// `(ln E1(u), e^u E1(u), e^{-u})` for `0 < u < ∞` by one evaluation; `ln_u` is `ln u`.
-fn ln_e1_and_scaled(u: f64, ln_u: f64) -> (f64, f64, f64) {
-    let ratio = (-u).exp();
-    if u <= TAYLOR_LIMIT {
-        let value = if u <= SERIES_LIMIT { e1_series(u, ln_u) } else { e1_taylor(u) };
-        (value.ln(), value / ratio, ratio)
-    } else {
-        let scaled = e1_scaled_continued_fraction(u);
-        (-u + scaled.ln(), scaled, ratio)
-    }
-}
 
 /// `E1` about the nearest centre `c` of a grid on `[SERIES_LIMIT, TAYLOR_LIMIT]`, `u = c + t`:
 /// `E1'(u) = -e^{-u}/u = -(e^{-c}/c) g(t)` with `g(t) = e^{-t}/(1 + t/c) = Σ a_k t^k`, where
@@ -163,92 +147,19 @@ fn e1_scaled_continued_fraction(u: f64) -> f64 {
     h
 }
 
-/// A solution of `E1(u) = y`, kept so that the next inversion at a nearby `y` can start from it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct E1Root {
-    /// `u ≥ 0` with `E1(u) = y`.
-    pub u: f64,
-    /// `e^{-u}`: the sliding ratio `R` when `y = Ψ(R)`.
-    pub ratio: f64,
-    /// `ln u`.
-    ln_u: f64,
-    /// `ln y`.
-    ln_y: f64,
-    /// `e^u E1(u)`, i.e. `-1 / (d ln E1 / d ln u)` at the root.
-    scaled: f64,
-}
-
-/// The inverse of `E1`: the `u ≥ 0` with `E1(u) = y`, for `y ≥ 0` (`y = 0 → ∞`, `y = ∞ → 0`).
-pub fn e1_inverse(y: f64) -> f64 {
-    e1_inverse_near(y, None).u
-}
-
-/// Stop once a Newton step in `ln u` is this small: convergence is quadratic with a curvature
-/// factor below 1, so the stepped-to iterate is then accurate to rounding.
-const QUADRATIC_STOP: f64 = 1e-8;
-
-/// [`e1_inverse`] starting from the root at a nearby `y` when one is known (a previous iterate):
-/// the first Newton step then needs no evaluation, and one or two more finish.
-///
-/// Newton on `h(v) = ln E1(e^v) - ln y` in `v = ln u`, where `h` is smooth and strictly
-/// decreasing on the whole real line, safeguarded by bisection.
-pub fn e1_inverse_near(y: f64, near: Option<E1Root>) -> E1Root {
-    let at = |u: f64, scaled: f64| E1Root { u, ratio: (-u).exp(), ln_u: u.ln(), ln_y: y.ln(), scaled };
-    if y.is_nan() || y < 0.0 {
-        return at(f64::NAN, f64::NAN);
-    }
-    if y == 0.0 {
-        return at(f64::INFINITY, 0.0);
-    }
-    if y.is_infinite() {
-        return at(0.0, f64::INFINITY);
-    }
-    let ln_y = y.ln();
-    // Bracket in v = ln u. E1(e^-745) ≈ 745 - γ and E1(e^6.7) ≈ e^-812 cover every finite double.
-    let (mut lo, mut hi) = (-745.0_f64, 6.7_f64);
-    let mut v = match near {
-        // h(v_near) = ln y_near - ln y and h'(v_near) = -1/scaled_near: a Newton step for free.
-        Some(root) if root.ln_u.is_finite() && root.scaled.is_finite() => {
-            (root.ln_u + (root.ln_y - ln_y) * root.scaled).clamp(lo, hi)
-        }
-        // E1(u) ≈ -γ - ln u for small u; for large u, E1(u) ≈ e^-u/(u + 1), so
-        // u = -ln y - ln(u + 1) by a few fixed-point sweeps.
-        _ if y > 0.5 => (-EULER_GAMMA - y).max(-744.0),
-        _ => {
-            let mut u0 = -ln_y;
-            for _ in 0..4 {
-                u0 = (-ln_y - (u0 + 1.0).ln()).max(1e-3);
-            }
-            u0.ln()
-        }
-    };
-    for _ in 0..200 {
-        let u = v.exp();
-        // One evaluation gives ln E1(u), the slope dh/dv = -1 / (e^u E1(u)) and e^{-u}.
-        let (ln_e1_u, scaled, ratio) = ln_e1_and_scaled(u, v);
-        let h = ln_e1_u - ln_y;
-        // ln E1 carries a rounding error of a few ulps of |ln y|: below that, h is noise.
-        if h.abs() <= 4.0 * f64::EPSILON * ln_y.abs().max(1.0) {
-            return E1Root { u, ratio, ln_u: v, ln_y, scaled };
-        }
-        // h is decreasing in v: h > 0 means the root lies to the right.
-        if h > 0.0 {
-            lo = v;
-        } else {
-            hi = v;
-        }
-        let newton = v + h * scaled;
-        let next = if newton.is_finite() && newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
-        let step = (next - v).abs();
-        if step <= 4.0 * f64::EPSILON * v.abs().max(1.0) || (next == newton && step <= QUADRATIC_STOP) {
-            // The slope barely changes over so short a step.
-            let u = next.exp();
-            return E1Root { u, ratio: (-u).exp(), ln_u: next, ln_y, scaled };
-        }
-        v = next;
-    }
+/// `(u, R, Ψ(R))` for `u = e^v`, `R = e^{-u}`: the sliding ratio and its `Ψ = E1(u)`, without
+/// a logarithm (the series takes `ln u = v` as it is).
+pub fn psi_at_ln_u(v: f64) -> (f64, f64, f64) {
     let u = v.exp();
-    E1Root { u, ratio: (-u).exp(), ln_u: v, ln_y, scaled: f64::NAN }
+    let ratio = (-u).exp();
+    let psi = if u <= SERIES_LIMIT {
+        e1_series(u, v)
+    } else if u <= TAYLOR_LIMIT {
+        e1_taylor(u)
+    } else {
+        ratio * e1_scaled_continued_fraction(u)
+    };
+    (u, ratio, psi)
 }
 
 /// `Ψ(R) = E1(-ln R)`, the integral of the `R` evolution rule (see the module docs).
@@ -260,14 +171,6 @@ pub fn psi(sliding_ratio: f64) -> f64 {
     } else {
         e1(-sliding_ratio.ln())
     }
-}
-
-/// The inverse of [`psi`]: the sliding ratio `R ∈ [0, 1]` with `Ψ(R) = y`, together with the
-/// root `u = -ln R` (which keeps full precision where `R` rounds to 1). `near` is the root at a
-/// nearby `y`, if known.
-pub fn psi_inverse(y: f64, near: Option<E1Root>) -> (f64, E1Root) {
-    let root = e1_inverse_near(y, near);
-    (root.ratio, root)
 }
 
 #[cfg(test)]
@@ -318,17 +221,16 @@ mod tests {
     }
 
     #[test]
-    fn e1_inverse_round_trips_over_the_whole_range() {
-        for exponent in -300..=2 {
-            for mantissa in [1.0, 2.5, 7.0] {
-                let u = mantissa * 10f64.powi(exponent);
-                if u > 700.0 {
-                    continue;
-                }
-                let y = e1(u);
-                let back = e1_inverse(y);
-                assert!((back - u).abs() <= 1e-12 * u, "u = {u}: E1 = {y}, inverse = {back}");
-            }
+    fn psi_at_ln_u_matches_psi_over_the_whole_range() {
+        // v = ln(-ln R) from R = 1 - 1e-300 to R = e^-700: every branch of E1.
+        let mut v = -690.0_f64;
+        while v <= 6.55 {
+            let (u, ratio, value) = psi_at_ln_u(v);
+            assert!((u - v.exp()).abs() <= 1e-15 * u, "v = {v}: u = {u}");
+            assert!((ratio - (-u).exp()).abs() <= 1e-15 * ratio, "v = {v}: R = {ratio}");
+            let expected = e1(u);
+            assert!((value - expected).abs() <= 1e-15 * expected, "v = {v}: Ψ = {value}, E1(u) = {expected}");
+            v += 0.37;
         }
     }
 }

@@ -11,9 +11,11 @@
 //! * Normal sliding ratio: `Ṙ = -r ln(R) Λ` integrated exactly, `Ψ(R₁) = Ψ(R₀) + r Δp`
 //!   (see [`super::expint`]).
 //! * Consistency: the subloading surface passes through the new traction,
-//!   `|f_{n+1}| = R₁ μ_k f_n z₁` (eq. 3). This scalar equation in `Δp` is solved by safeguarded
-//!   Newton; loading (`Δp > 0`) happens exactly when the elastic predictor lies outside the
-//!   current subloading surface, the discrete form of `Λ > 0` in eq. (9).
+//!   `|f_{n+1}| = R₁ μ_k f_n z₁` (eq. 3). This scalar equation is solved by safeguarded Newton
+//!   in `v = ln(-ln R₁)`, where `Ψ(R₁)` and so `Δp` are explicit (no inverse of `E1`), and `Δp`
+//!   is then polished in the consistency condition itself; loading (`Δp > 0`) happens exactly
+//!   when the elastic predictor lies outside the current subloading surface, the discrete form
+//!   of `Λ > 0` in eq. (9).
 //!
 //! Traction reversal: when the predictor changes the sign of `f_t`, the path passed through
 //! `f_t = 0`, where `R = 0`; the corrector then starts from `Ψ(0) = 0` in the new direction. No
@@ -21,7 +23,7 @@
 
 use std::fmt;
 
-use super::expint::{E1Root, psi, psi_inverse};
+use super::expint::{psi, psi_at_ln_u};
 use super::law::{decay, decay_slope, healing, healing_slope};
 use super::params::FrictionParams;
 use super::state::ContactState;
@@ -57,8 +59,18 @@ pub struct Restart {
     psi_start: f64,
     /// The solution `Δp` (m).
     plastic_increment: f64,
-    /// The inversion of `Ψ` at the solution.
-    root: Option<E1Root>,
+    /// Where the solve ended, when `R` moved.
+    root: Option<Root>,
+}
+
+/// The end of a consistency solve in its unknown `v = ln(-ln R)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Root {
+    ln_u: f64,
+    /// `R`.
+    ratio: f64,
+    /// `Ψ(R)`.
+    psi: f64,
 }
 
 impl Restart {
@@ -175,127 +187,216 @@ pub fn update_from(
         return Ok(elastic); // unloading: the predictor lies inside the subloading surface
     }
 
-    // Loading: find Δp in (0, |f_trial|/α_t] with ψ(Δp) = |f_trial| - α_t Δp - R(Δp) μ_k f_n z(Δp) = 0.
-    // Ψ(R) at the start is the restart's only if it started from the same R; its Δp and root
-    // are only starting points, good from anywhere nearby (the previous step, say).
+    // Loading: find the end of the step on the subloading surface, ψ = |f_trial| - α_t Δp -
+    // R μ_k f_n z(Δp) = 0 with Ψ(R) = Ψ(R₀) + r Δp. Ψ(R) at the start is the restart's only if
+    // it started from the same R.
     let psi_start = restart.filter(|r| r.ratio_start == ratio_start).map_or_else(|| psi(ratio_start), |r| r.psi_start);
-    // The previous iterate's root starts the next inversion of Ψ.
-    let near = std::cell::Cell::new(restart.and_then(|r| r.root));
-    let residual = |increment: f64| -> Result<Residual, FrictionError> {
+    let max_increment = trial_abs / alpha;
+    // A trial so far that the decay of 1/R* overshoots 1 lies beyond the root; only an
+    // overshoot at the solution itself is an error.
+    let too_far =
+        |e: &FrictionError| matches!(e, FrictionError::StructureOutOfRange { structure, .. } if *structure < 1.0);
+    let ends_on_surface = |increment: f64, ratio: f64, log_ratio: f64| -> Result<OnSurface, FrictionError> {
         let structure = solve_structure(params, z0, increment, dt)?;
-        let (ratio, log_ratio) = if psi_start.is_infinite() {
-            (1.0, 0.0)
-        } else {
-            let (ratio, root) = psi_inverse(psi_start + params.r * increment, near.get());
-            near.set(Some(root));
-            (ratio, root.u)
-        };
-        let value = trial_abs - alpha * increment - ratio * mu_f * structure.value;
         // ∂ψ/∂Δp = -(α_t + hardening), with dR/dΔp = r (-ln R) from Ψ'(R) = 1/(-ln R). The
         // hardening is kept apart from α_t: next to a very stiff contact it would be lost.
         let hardening = mu_f * (params.r * log_ratio * structure.value + ratio * structure.d_plastic);
-        Ok(Residual { value, slope: -alpha - hardening, hardening, ratio, structure })
+        let value = trial_abs - alpha * increment - ratio * mu_f * structure.value;
+        Ok(OnSurface { increment, value, hardening, ratio, structure })
     };
 
-    let mut lo = 0.0_f64;
-    let mut hi = trial_abs / alpha;
-    // Newton from the left converges monotonically where ψ is convex; from R = 0 the slope at
-    // Δp = 0 is infinite, so start a little inside.
-    let mut x = if ratio_start > 0.0 { 0.0 } else { hi * 1e-12 };
-    let mut last = match restart.map(|r| r.plastic_increment).filter(|&p| p > x && p < hi) {
-        // A restart too far for the structure's range falls back to the usual start.
-        Some(start) => match residual(start) {
-            Ok(r) => {
-                x = start;
-                r
-            }
-            Err(_) => residual(x)?,
-        },
-        None => residual(x)?,
-    };
-    // A trial Δp so large that the decay of 1/R* overshoots 1 is simply too far: the root lies
-    // below it. Only an overshoot at the solution itself is an error.
-    let too_far =
-        |e: &FrictionError| matches!(e, FrictionError::StructureOutOfRange { structure, .. } if *structure < 1.0);
-    // ψ is a difference of tractions of size |f_trial|: below this it is rounding noise.
-    let noise = 8.0 * f64::EPSILON * trial_abs;
-    let mut overshoot = None;
-    for _ in 0..200 {
-        if last.value.abs() <= noise {
-            break;
-        }
-        if last.value > 0.0 {
-            lo = x;
-        } else {
-            hi = x;
-        }
-        let newton = x - last.value / last.slope;
-        let next = if newton.is_finite() && newton > lo && newton < hi {
-            newton
-        } else if lo == 0.0 {
-            hi * 1e-4
-        } else if hi > 1e4 * lo {
-            (lo * hi).sqrt()
-        } else {
-            0.5 * (lo + hi)
+    // What a converged ψ may not exceed.
+    let tolerance = 1e-9 * trial_abs.max(mu_f);
+    let (end, root) = if psi_start.is_infinite() {
+        // R₀ = 1 stays 1 (Ṙ = 0): the unknown is q = -Δp, in which ψ increases.
+        let start = restart.map_or(0.0, |r| -r.plastic_increment.clamp(0.0, max_increment));
+        let at = |q: f64| {
+            let end = ends_on_surface(-q, 1.0, 0.0)?;
+            Ok(Trial { slope: alpha + end.hardening, noise: 8.0 * f64::EPSILON * trial_abs, end })
         };
-        let step = (next - x).abs();
-        if next == newton && step <= 1e-14 * x {
-            break; // x is the root to rounding: evaluating at `next` would change nothing
-        }
-        match residual(next) {
-            Ok(r) => {
-                x = next;
-                last = r;
-            }
-            Err(e) if too_far(&e) && next > lo => {
-                hi = next;
-                overshoot = Some(e);
-                if hi - lo <= 1e-14 * hi {
-                    break;
-                }
-                continue;
-            }
-            Err(e) => return Err(e),
-        }
-        if step <= 1e-14 * x || hi - lo <= 1e-14 * hi {
-            break;
-        }
-    }
-    if last.value.is_nan() || last.value.abs() > 1e-9 * trial_abs.max(mu_f) {
-        // Closing in on the edge where 1/R* leaves its range means the root lies beyond it.
-        return Err(overshoot.unwrap_or(FrictionError::NotConverged { residual: last.value }));
-    }
-    let increment = x;
-    let stiffness = -last.slope; // |∂ψ/∂Δp| = α_t + hardening
+        (solve_consistency(at, -max_increment, 0.0, start, &too_far, tolerance)?, None)
+    } else {
+        // The unknown is v = ln(-ln R), in which Ψ(R) = E1(e^v) is explicit: each trial costs
+        // one evaluation of E1 where Δp as the unknown needs an inversion of Ψ. Δp(v) =
+        // (Ψ(R(v)) - Ψ(R₀))/r falls as v rises (dΔp/dv = -R/r), and ψ rises with it.
+        let v_start = if ratio_start > 0.0 { (-ratio_start.ln()).ln() } else { LN_U_MAX };
+        // E1(u) ≥ -γ - ln u, so below this Δp(v) exceeds |f_trial|/α_t, where ψ < 0. Far below
+        // -745, u = e^v is 0, R is 1 and E1 is -γ - v.
+        let v_floor = -(psi_start + params.r * max_increment) - 1.0;
+        let at = |v: f64| {
+            let (u, ratio, psi_end) = psi_at_ln_u(v);
+            let increment = (psi_end - psi_start) / params.r;
+            let end = ends_on_surface(increment.max(0.0), ratio, u)?;
+            let noise = 8.0 * f64::EPSILON * (trial_abs + alpha * (psi_end + psi_start) / params.r);
+            Ok(Trial { slope: (alpha + end.hardening) * ratio / params.r, noise, end })
+        };
+        // Start from the restart's end, moved along dΨ/dv = -R to the restart's Δp; without
+        // one, from the R whose surface passes through the trial traction (no plastic slip).
+        // A restart is taken only where ψ is monotone and so has one root: else the root found
+        // could depend on where the solve started.
+        let guess = restart
+            .filter(|_| single_root(params, mu_f))
+            .and_then(|r| {
+                r.root.map(|root| root.ln_u - (psi_start + params.r * r.plastic_increment - root.psi) / root.ratio)
+            })
+            .filter(|v| *v > v_floor && *v < v_start)
+            .unwrap_or_else(|| {
+                let ratio = (trial_abs / (mu_f * healed.value)).min(1.0 - 1e-3);
+                (-ratio.ln()).ln().clamp(v_floor, v_start)
+            });
+        let end = solve_consistency(at, v_floor, v_start, guess, &too_far, tolerance)?;
+        let root = Root { ln_u: end.0, ratio: end.1.end.ratio, psi: psi_start + params.r * end.1.end.increment };
+        (end, Some(root))
+    };
+    let last = end.1.end;
+    let (increment, structure) = polish_increment(params, z0, dt, last.ratio * mu_f, &last);
+    let stiffness = alpha + last.hardening; // |∂ψ/∂Δp|
     // The traction on the subloading surface, |f| = R μ_k f_n / R*: exact on the surface side,
     // where |f_trial| - α_t Δp would carry the cancellation of a large trial traction.
-    let traction = sigma * last.ratio * mu_f * last.structure.value;
+    let traction = sigma * last.ratio * mu_f * structure.value;
     // ∂Δp/∂|f_trial| = 1/|∂ψ/∂Δp|, ∂|f_trial|/∂Δū = -α_t σ.
     let d_increment = -alpha * sigma / stiffness;
     Ok(Update {
         state: ContactState {
             traction_t: traction,
             traction_n,
-            structure: last.structure.value,
+            structure: structure.value,
             plastic_slip: state.plastic_slip + increment,
         },
         plastic_increment: increment,
         // -α_t (1 - α_t/(α_t + h)) = -α_t h/(α_t + h), without the cancellation.
         tangent: -alpha * last.hardening / stiffness,
-        structure_tangent: last.structure.d_plastic * d_increment,
-        restart: Some(Restart { ratio_start, psi_start, plastic_increment: increment, root: near.get() }),
+        structure_tangent: structure.d_plastic * d_increment,
+        restart: Some(Restart { ratio_start, psi_start, plastic_increment: increment, root }),
     })
 }
 
-struct Residual {
-    value: f64,
+/// `Δp` and `1/R*` at the end, polished by the consistency condition at the solution's `R`:
+/// one Newton step on `α_t Δp + R μ_k f_n z(Δp) = |f_trial|` in `Δp` alone, whose residual is
+/// the trial's `-ψ`. `(Ψ(R) - Ψ(R₀))/r` carries the rounding of `Ψ(R₀)/r`, large next to a small
+/// `Δp`; the step brings `Δp` to the rounding of the tractions, so that it depends on `R` alone
+/// and not on where the solve for `R` stopped. `surface` is `R μ_k f_n`.
+fn polish_increment(params: &FrictionParams, z0: f64, dt: f64, surface: f64, end: &OnSurface) -> (f64, Structure) {
+    let unpolished = (end.increment, end.structure);
+    let slope = params.alpha_t + surface * end.structure.d_plastic;
+    // Where the structure's decay outruns α_t (see [`single_root`]) the step is no better.
+    if slope <= 0.5 * params.alpha_t {
+        return unpolished;
+    }
+    let increment = (end.increment + end.value / slope).max(0.0);
+    if increment == end.increment || !increment.is_finite() {
+        return unpolished;
+    }
+    solve_structure(params, z0, increment, dt).map_or(unpolished, |structure| (increment, structure))
+}
+
+/// Whether `ψ` is monotone in `Δp` for every state, and so has one root: `|∂ψ/∂Δp| = α_t +
+/// μ_k f_n (r (-ln R) z + R z')` with `z' = dz/dΔp ≥ -γκ max (z - 1)^m` (the trapezoidal rule's
+/// `∂F/∂z ≥ 1`), so `α_t > μ_k f_n γκ max (z - 1)^m` suffices. It holds by a wide margin for the
+/// paper's constants (a stiff contact) and fails where the structure's decay outruns it.
+fn single_root(params: &FrictionParams, mu_f: f64) -> bool {
+    let largest_decay = decay(params, params.max_structure()).max(decay(params, 1.0));
+    params.alpha_t > mu_f * params.rstar_scale() * params.kappa * largest_decay
+}
+
+/// Upper bound of `v = ln u = ln(-ln R)`: `R = e^{-735}`, which is 0 to every traction (`Ψ`
+/// is then below 1e-321).
+const LN_U_MAX: f64 = 6.6;
+
+/// The consistency function at one trial of its unknown (`v` or `q`, see [`update_from`]).
+struct Trial {
+    /// `dψ/d(unknown)`, positive.
     slope: f64,
-    /// The part of `-slope` beyond `α_t`.
+    /// Rounding noise of `ψ`: the size of its terms times a few ulps.
+    noise: f64,
+    end: OnSurface,
+}
+
+/// The end of the step that a trial's `Δp` and `R` give.
+#[derive(Debug, Clone, Copy)]
+struct OnSurface {
+    /// `Δp` (m).
+    increment: f64,
+    /// `ψ` (Pa).
+    value: f64,
+    /// `|∂ψ/∂Δp| - α_t`.
     hardening: f64,
-    /// `R` from its evolution rule at this `Δp`.
+    /// `R`.
     ratio: f64,
     structure: Structure,
+}
+
+/// Safeguarded Newton for `ψ(x) = 0` on `[lo, hi]`, where `ψ` increases from negative to
+/// positive, from `start`. A trial that `too_far` rejects lies below the root. Returns the
+/// root and the trial there; an error if `ψ` could not be brought to zero.
+fn solve_consistency(
+    at: impl Fn(f64) -> Result<Trial, FrictionError>,
+    mut lo: f64,
+    mut hi: f64,
+    start: f64,
+    too_far: &impl Fn(&FrictionError) -> bool,
+    tolerance: f64,
+) -> Result<(f64, Trial), FrictionError> {
+    let mut x = start;
+    let mut last = match at(x) {
+        Ok(t) => t,
+        Err(e) if too_far(&e) && x < hi => {
+            x = hi;
+            at(hi)?
+        }
+        Err(e) => return Err(e),
+    };
+    let mut overshoot = None;
+    let (mut last_step, mut step_before_last) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..200 {
+        if last.end.value.abs() <= last.noise {
+            break;
+        }
+        if last.end.value > 0.0 {
+            hi = x;
+        } else {
+            lo = x;
+        }
+        let newton = x - last.end.value / last.slope;
+        // Bisect when Newton leaves the bracket or fails to halve the step before last (it can
+        // cycle between the ends where ψ bends strongly).
+        let contracts = (newton - x).abs() <= 0.5 * step_before_last;
+        let next = if newton.is_finite() && newton > lo && newton < hi && contracts { newton } else { 0.5 * (lo + hi) };
+        let step = (next - x).abs();
+        step_before_last = last_step;
+        last_step = step;
+        // Below a few ulps of x the trial would change nothing.
+        let rounding = 4.0 * f64::EPSILON * x.abs().max(1.0);
+        if next == newton && step <= rounding {
+            break;
+        }
+        match at(next) {
+            Ok(t) => {
+                x = next;
+                last = t;
+            }
+            Err(e) if too_far(&e) && next < hi => {
+                lo = next;
+                overshoot = Some(e);
+                if hi - lo <= rounding {
+                    break;
+                }
+                continue;
+            }
+            Err(e) => return Err(e),
+        }
+        if step <= rounding || hi - lo <= rounding {
+            break;
+        }
+    }
+    // ψ cannot be resolved below its rounding noise, nor below its change between neighbouring
+    // floating-point values of x.
+    let resolution = last.noise + last.slope * 4.0 * f64::EPSILON * x.abs().max(1.0);
+    if last.end.value.is_nan() || last.end.value.abs() > tolerance.max(resolution) {
+        // Closing in on the edge where 1/R* leaves its range means the root lies beyond it.
+        return Err(overshoot.unwrap_or(FrictionError::NotConverged { residual: last.end.value }));
+    }
+    Ok((x, last))
 }
 
 /// `1/R*` at the end of a step and its derivative with respect to the plastic slip increment.
