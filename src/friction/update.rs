@@ -470,17 +470,9 @@ fn solve_structure(
         }
         return Err(out_of_range(max - f_max));
     }
-    let mut z = if params.m == 1.0 && params.n == 1.0 {
-        // The paper's exponents make F linear in z inside [1, μ_s/μ_k]: solve directly.
-        let a = params.kinetic_static_ratio();
-        ((fixed + decay_weight + heal_weight) / (1.0 + decay_weight + heal_weight * a)).clamp(min, max)
-    } else {
-        newton_structure(&f, &df, z0.clamp(min, max), min, max)
-    };
-    if params.m == 1.0 && params.n == 1.0 {
-        // One Newton correction polishes the rounding of the closed form.
-        z = (z - f(z) / df(z)).clamp(min, max);
-    }
+    // (With the paper's exponents this is reached only for a root outside the range by
+    // rounding; the closed form above has taken every other.)
+    let z = newton_structure(&f, &df, z0.clamp(min, max), min, max);
     let slope = df(z);
     // ∂F/∂Δp = γκ/2 [(z₀-1)^m + (z-1)^m]; dz/dΔp = -(∂F/∂Δp)/(∂F/∂z).
     let d_plastic = if slope.is_finite() {
