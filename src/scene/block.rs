@@ -13,7 +13,7 @@ use crate::fem::{Block, PlaneStrain, StructuredMesh, assemble};
 /// 200 B × log2(n) per degree of freedom `n = 2 (nx+1)(ny+1)`, the sparse factor's fill growing
 /// like `n log n`, plus three dense `k × k` matrices where the contact's `k = nx + 1` unknowns
 /// are condensed. Fitted to the peak RSS of 1000×100 measured here (692 MB; the estimate is
-/// 8 % higher); at 300×30 and 100×10 it is 32 % lower and 40 % higher (104 MB and 15 MB
+/// 8 % higher); at 300×30 and 100×10 it is 12 % lower and 40 % higher (79 MB and 15 MB
 /// measured). Adaptive runs, which never condense, need less.
 pub fn estimated_memory(nx: usize, ny: usize) -> (f64, f64) {
     let dofs = 2.0 * (nx as f64 + 1.0) * (ny as f64 + 1.0);
