@@ -50,7 +50,8 @@ pub struct Update {
 
 /// The end of one consistency solve: a starting point for the next solve of the same point
 /// (Newton's next trial of the step, the same step over another `dt`, or the next step), which
-/// then converges in one or two iterations instead of three or four from `Δp = 0`.
+/// then starts next to its root instead of from the elastic guess. It is taken only where the
+/// root is unique (see [`update_from`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Restart {
     /// `R` at the start of the step on the loaded side.
