@@ -208,9 +208,12 @@ pub fn update_from(
 
     // What a converged ψ may not exceed.
     let tolerance = 1e-9 * trial_abs.max(mu_f);
+    // A restart starts the solve only where ψ is monotone and so has one root: else the root
+    // found could depend on where the solve started, and it starts from the same point always.
+    let restart_near = restart.filter(|_| single_root(params, mu_f));
     let (end, root) = if psi_start.is_infinite() {
         // R₀ = 1 stays 1 (Ṙ = 0): the unknown is q = -Δp, in which ψ increases.
-        let start = restart.map_or(0.0, |r| -r.plastic_increment.clamp(0.0, max_increment));
+        let start = restart_near.map_or(0.0, |r| -r.plastic_increment.clamp(0.0, max_increment));
         let at = |q: f64| {
             let end = ends_on_surface(-q, 1.0, 0.0)?;
             Ok(Trial { slope: alpha + end.hardening, noise: 8.0 * f64::EPSILON * trial_abs, end })
@@ -233,10 +236,7 @@ pub fn update_from(
         };
         // Start from the restart's end, moved along dΨ/dv = -R to the restart's Δp; without
         // one, from the R whose surface passes through the trial traction (no plastic slip).
-        // A restart is taken only where ψ is monotone and so has one root: else the root found
-        // could depend on where the solve started.
-        let guess = restart
-            .filter(|_| single_root(params, mu_f))
+        let guess = restart_near
             .and_then(|r| {
                 r.root.map(|root| root.ln_u - (psi_start + params.r * r.plastic_increment - root.psi) / root.ratio)
             })
