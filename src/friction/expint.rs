@@ -21,12 +21,18 @@ pub fn e1(u: f64) -> f64 {
     if u == 0.0 {
         return f64::INFINITY;
     }
+    e1_by_size(u, || u.ln(), || (-u).exp())
+}
+
+/// `E1(u)` for `u > 0` by the expansion its size calls for. `ln_u` and `exp_minus_u` give `ln u`
+/// and `e^{-u}`, which only the series and the continued fraction need (a caller may have them).
+fn e1_by_size(u: f64, ln_u: impl FnOnce() -> f64, exp_minus_u: impl FnOnce() -> f64) -> f64 {
     if u <= SERIES_LIMIT {
-        e1_series(u, u.ln())
+        e1_series(u, ln_u())
     } else if u <= TAYLOR_LIMIT {
         e1_taylor(u)
     } else {
-        (-u).exp() * e1_scaled_continued_fraction(u)
+        exp_minus_u() * e1_scaled_continued_fraction(u)
     }
 }
 
@@ -152,14 +158,7 @@ fn e1_scaled_continued_fraction(u: f64) -> f64 {
 pub fn psi_at_ln_u(v: f64) -> (f64, f64, f64) {
     let u = v.exp();
     let ratio = (-u).exp();
-    let psi = if u <= SERIES_LIMIT {
-        e1_series(u, v)
-    } else if u <= TAYLOR_LIMIT {
-        e1_taylor(u)
-    } else {
-        ratio * e1_scaled_continued_fraction(u)
-    };
-    (u, ratio, psi)
+    (u, ratio, e1_by_size(u, || v, || ratio))
 }
 
 /// `Ψ(R) = E1(-ln R)`, the integral of the `R` evolution rule (see the module docs).

@@ -349,6 +349,8 @@ fn solve_consistency(
     };
     let mut overshoot = None;
     let (mut last_step, mut step_before_last) = (f64::INFINITY, f64::INFINITY);
+    // A few ulps of x: a trial closer than this would change nothing.
+    let ulps = |x: f64| 4.0 * f64::EPSILON * x.abs().max(1.0);
     for _ in 0..200 {
         if last.end.value.abs() <= last.noise {
             break;
@@ -366,8 +368,7 @@ fn solve_consistency(
         let step = (next - x).abs();
         step_before_last = last_step;
         last_step = step;
-        // Below a few ulps of x the trial would change nothing.
-        let rounding = 4.0 * f64::EPSILON * x.abs().max(1.0);
+        let rounding = ulps(x);
         if next == newton && step <= rounding {
             break;
         }
@@ -392,7 +393,7 @@ fn solve_consistency(
     }
     // ψ cannot be resolved below its rounding noise, nor below its change between neighbouring
     // floating-point values of x.
-    let resolution = last.noise + last.slope * 4.0 * f64::EPSILON * x.abs().max(1.0);
+    let resolution = last.noise + last.slope * ulps(x);
     if last.end.value.is_nan() || last.end.value.abs() > tolerance.max(resolution) {
         // Closing in on the edge where 1/R* leaves its range means the root lies beyond it.
         return Err(overshoot.unwrap_or(FrictionError::NotConverged { residual: last.end.value }));
