@@ -240,7 +240,7 @@ fn run_command(args: RunArgs) -> ExitCode {
     match outcome {
         Outcome::Completed { steps, rejected, wall, catalog } => {
             if !args.quiet {
-                let rejected = if case.time.tolerance.is_some() {
+                let rejected = if case.time.adaptive_tolerance().is_some() {
                     format!(" (adaptive, {rejected} rejected)")
                 } else {
                     String::new()

@@ -102,7 +102,8 @@ pub fn run(
     // Asked after `begin`: a sink learns from the layout what it will read (an MCAP log's
     // node selection, say).
     let needs = sinks.iter().fold(options.needs, |n, s| n.union(s.needs()));
-    let detector = EventDetector::new(layout.segments.len(), options.slip_rate_threshold, options.merge_within);
+    let detector = EventDetector::new(layout.segments.len(), options.slip_rate_threshold, options.merge_within)
+        .with_instantaneous_rates(layout.instantaneous_slip_rate);
     let mut observers = Observers { sinks, detector, last: None };
     if let Err(e) = begun {
         // The initial state is the last good step: the sinks that began keep it.
@@ -125,7 +126,7 @@ pub fn run(
             .progress_chars("=> "),
     );
     let mut control =
-        time.tolerance.map(|tolerance| StepControl::new(tolerance, time.dt, time.dt_max(), time.dt_min()));
+        time.adaptive_tolerance().map(|tolerance| StepControl::new(tolerance, time.dt, time.dt_max(), time.dt_min()));
     let mut shown = false;
     let mut k: u64 = 0;
     loop {

@@ -99,6 +99,21 @@ fn time_rules() {
     );
     expect_invalid(
         &c,
+        &["time.integrator=tsit5", "time.tolerance=0.5"],
+        "time.tolerance = 0.5 must lie in (0, 0.1] (a relative local error per step of tsit5)",
+    );
+    expect_invalid(
+        &c,
+        &["time.integrator=rk4"],
+        "time.integrator: unknown variant `rk4`, expected `wilson` or `tsit5`",
+    );
+    expect_invalid(
+        &case("point_loading.toml"),
+        &["time.integrator=tsit5"],
+        "time.integrator = tsit5 is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
+    );
+    expect_invalid(
+        &c,
         &["time.theta=1.2"],
         "time.theta = 1.2 must lie in [1.37, 3] (Wilson's method is unconditionally stable for θ ≥ 1.37)",
     );

@@ -108,6 +108,13 @@ impl Case {
                 "is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
             );
         }
+        if let (Integrator::Tsit5, SceneSpec::Point(_)) = (self.time.integrator, &self.scene) {
+            time.fail(
+                "integrator",
+                "tsit5",
+                "is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
+            );
+        }
         all.extend(time.violations);
         let mut scene = Checker::new("scene");
         self.scene.check(&mut scene);

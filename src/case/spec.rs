@@ -45,13 +45,45 @@ pub struct TimeSpec {
     pub energy_tolerance: f64,
     /// Local error per second of simulated time (1/s) of adaptive stepping by step doubling;
     /// unset (the default): fixed steps of `dt`. When set, `dt` is the first step. See
-    /// [`crate::dynamics::adaptive`].
+    /// [`crate::dynamics::adaptive`]. With `integrator = "tsit5"`: its local error per step
+    /// ([`TSIT5_DEFAULT_TOLERANCE`] by default).
     #[serde(default)]
     pub tolerance: Option<f64>,
     /// Largest adaptive step (s); `t_end / 100` by default.
     #[serde(default)]
     pub dt_max: Option<f64>,
+    /// The time integrator of dynamic scenes: Wilson's θ method (the paper's, by default) or
+    /// Tsitouras' explicit Runge–Kutta 5(4) pair on the rate form.
+    #[serde(default)]
+    pub integrator: Integrator,
 }
+
+/// `time.integrator`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Integrator {
+    /// Wilson's θ method with the implicit friction update (the paper's §2.2): fixed steps of
+    /// `dt`, or adaptive by step doubling when `tolerance` is set.
+    #[default]
+    Wilson,
+    /// Tsitouras' 5(4) pair on the rate equations (4)-(6), (14), always adaptive, with the
+    /// instants where a contact point's slip rate crosses the event threshold located
+    /// ([`crate::dynamics::runge_kutta`]). `tolerance` is its local error per step.
+    Tsit5,
+}
+
+impl Integrator {
+    /// The case file's name for it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Integrator::Wilson => "wilson",
+            Integrator::Tsit5 => "tsit5",
+        }
+    }
+}
+
+/// Local error per step of `tsit5` when `time.tolerance` is not given.
+pub const TSIT5_DEFAULT_TOLERANCE: f64 = 1e-8;
 
 fn default_theta() -> f64 {
     1.4
@@ -80,10 +112,14 @@ impl TimeSpec {
             && c.finite("tolerance", tolerance)
             && !(tolerance > 0.0 && tolerance <= 0.1)
         {
-            c.fail("tolerance", tolerance, "must lie in (0, 0.1] (a relative local error per second, 1/s)");
+            let meaning = match self.integrator {
+                Integrator::Wilson => "a relative local error per second, 1/s",
+                Integrator::Tsit5 => "a relative local error per step of tsit5",
+            };
+            c.fail("tolerance", tolerance, format!("must lie in (0, 0.1] ({meaning})"));
         }
         if let Some(dt_max) = self.dt_max {
-            if self.tolerance.is_none() {
+            if self.adaptive_tolerance().is_none() {
                 c.fail("dt_max", dt_max, format!("only applies to adaptive stepping: set {} too", c.key("tolerance")));
             } else if c.finite("dt_max", dt_max) && !(dt_max > 0.0 && dt_max <= self.t_end) {
                 c.fail("dt_max", dt_max, format!("must lie in (0, {} = {}]", c.key("t_end"), self.t_end));
@@ -107,14 +143,29 @@ impl TimeSpec {
         }
     }
 
+    /// The tolerance of adaptive stepping, if steps are adaptive: `tolerance`, or for `tsit5`
+    /// (always adaptive) its default.
+    pub fn adaptive_tolerance(&self) -> Option<f64> {
+        match self.integrator {
+            Integrator::Wilson => self.tolerance,
+            Integrator::Tsit5 => Some(self.tolerance.unwrap_or(TSIT5_DEFAULT_TOLERANCE)),
+        }
+    }
+
     /// Largest adaptive step (s).
     pub fn dt_max(&self) -> f64 {
         self.dt_max.unwrap_or(self.t_end / 100.0)
     }
 
-    /// Smallest adaptive step (s): below this a run stops rather than crawl.
+    /// Smallest adaptive step (s): below this a run stops rather than crawl. Tsitouras' pair
+    /// may go down to a few roundings of the time itself (4 ulp of `t_end`): it walks through
+    /// the logarithmic singularity of `Λ` where a traction changes sign (`R → 0` in the `-ln R`
+    /// of eq. 5's denominator) with steps that grow geometrically from picoseconds.
     pub fn dt_min(&self) -> f64 {
-        self.t_end / MAX_STEPS
+        match self.integrator {
+            Integrator::Wilson => self.t_end / MAX_STEPS,
+            Integrator::Tsit5 => 4.0 * f64::EPSILON * self.t_end,
+        }
     }
 
     /// Number of steps: `t_end/dt` rounded up; the last step is shortened to end at `t_end`.

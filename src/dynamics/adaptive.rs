@@ -50,12 +50,29 @@ impl StepControl {
         3 * (self.accepted + self.rejected)
     }
 
-    /// The next step after one whose estimated error was `error`.
-    fn resize(&self, h: f64, error: f64) -> f64 {
-        let factor = if error > 0.0 { 0.9 * (self.tolerance * h / error).sqrt() } else { 4.0 };
-        (h * factor.clamp(0.2, 4.0)).min(self.dt_max)
+    /// The next step after one of `h` whose estimated error was `error`: `h` times
+    /// `0.9 root(allowed/error)`, within `[0.2, max_growth]`, and at most `dt_max`. The error
+    /// allowed is `tolerance`, times `h` where the error is per unit step.
+    pub(super) fn resize(&self, h: f64, error: f64, scaling: ErrorScaling) -> f64 {
+        let allowed = if scaling.per_unit_step { self.tolerance * h } else { self.tolerance };
+        let factor = if error > 0.0 { 0.9 * (scaling.root)(allowed / error) } else { scaling.max_growth };
+        (h * factor.clamp(0.2, scaling.max_growth)).min(self.dt_max)
     }
 }
+
+/// How an integrator's error estimate scales with its step, for [`StepControl::resize`].
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ErrorScaling {
+    /// The error is compared with `tolerance × h` (per unit step) rather than `tolerance`.
+    pub per_unit_step: bool,
+    /// The `q`-th root, for an error estimate that falls as `h^q` relative to what is allowed.
+    pub root: fn(f64) -> f64,
+    /// The largest factor by which one step may exceed the last.
+    pub max_growth: f64,
+}
+
+/// Step doubling of the second-order Wilson step: the error per unit step falls as `h²`.
+const STEP_DOUBLING: ErrorScaling = ErrorScaling { per_unit_step: true, root: f64::sqrt, max_growth: 4.0 };
 
 /// Why an adaptive step could not be taken.
 #[derive(Debug, Clone, PartialEq)]
@@ -101,12 +118,12 @@ impl Dynamics {
             let noise = 10.0 * self.settings.tolerance;
             if error <= (control.tolerance * h).max(noise) {
                 control.accepted += 1;
-                control.next = control.resize(h, error);
+                control.next = control.resize(h, error, STEP_DOUBLING);
                 return Ok(h);
             }
             self.restore(start);
             control.rejected += 1;
-            control.next = control.resize(h, error).min(0.5 * h);
+            control.next = control.resize(h, error, STEP_DOUBLING).min(0.5 * h);
             if control.next < control.dt_min {
                 return Err(match failure {
                     Some(e) => AdaptiveError::Step(e),

@@ -5,6 +5,7 @@ pub mod body;
 pub mod condensed;
 pub mod contact;
 mod newton;
+pub mod runge_kutta;
 pub mod sparse;
 pub mod wilson;
 

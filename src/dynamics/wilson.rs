@@ -105,6 +105,21 @@ pub struct State {
     pub contact: Vec<ContactState>,
     /// Plastic slip `Δp` of every contact point over the last step (m).
     pub plastic_increment: Vec<f64>,
+    /// Plastic slip rate `Λ` of every contact point at `time` (m/s), where the integrator has
+    /// it ([`super::runge_kutta`]); empty otherwise (Wilson's method knows only `Δp`).
+    pub plastic_rate: Vec<f64>,
+}
+
+impl State {
+    /// Plastic slip rate of contact point `point` (m/s): `Λ` at `time` where known, else the
+    /// mean `Δp/Δt` over the step `dt` that led here (0 for the initial state).
+    pub fn slip_rate(&self, point: usize, dt: f64) -> f64 {
+        match self.plastic_rate.get(point) {
+            Some(&rate) => rate,
+            None if dt > 0.0 => self.plastic_increment[point] / dt,
+            None => 0.0,
+        }
+    }
 }
 
 /// Why a step failed.
@@ -207,7 +222,7 @@ pub struct Dynamics {
     pub settings: WilsonSettings,
     pub state: State,
     initial_traction: Vec<f64>,
-    initial_contact_force: Vec<f64>,
+    pub(super) initial_contact_force: Vec<f64>,
     jacobian: SymmetricMatrix,
     diagonal: Vec<usize>,
     stiffness_entries: Vec<usize>,
@@ -223,6 +238,8 @@ pub struct Dynamics {
     restarts: Vec<Option<Restart>>,
     /// The body operators of the last few `τ` (most recent last), for [`LinearSolver::Condensed`].
     condensations: Vec<Condensation>,
+    /// The Runge–Kutta integrator's memory, when it is the one stepping.
+    pub(super) runge_kutta: Option<super::runge_kutta::RungeKutta>,
 }
 
 /// How many `τ` keep their factored body operator (a halved step needs another; each holds a
@@ -362,6 +379,7 @@ impl Dynamics {
                 acceleration: vec![0.0; n],
                 contact: states,
                 plastic_increment: vec![0.0; n_points],
+                plastic_rate: Vec::new(),
             },
             body,
             contact,
@@ -379,6 +397,7 @@ impl Dynamics {
             split_steps: 0,
             restarts: Vec::new(),
             condensations: Vec::new(),
+            runge_kutta: None,
         };
         if dynamics.settings.energy_tolerance.is_some() {
             dynamics.track_energy();

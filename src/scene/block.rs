@@ -5,7 +5,7 @@ use super::{
     Frame, Layout, Needs, NodeInfo, RunError, Scene, SceneKind, SegmentInfo, advance_dynamics,
     advance_dynamics_adaptive, segment_sample, step_error,
 };
-use crate::case::{BlockSpec, Case};
+use crate::case::{BlockSpec, Case, Integrator};
 use crate::dynamics::{Dynamics, LinearSolver, StepControl, WilsonSettings, condensation_pays};
 use crate::fem::{Block, PlaneStrain, StructuredMesh, assemble};
 
@@ -27,6 +27,8 @@ pub struct BlockScene {
     dynamics: Dynamics,
     mesh: StructuredMesh,
     layout: Layout,
+    /// The adaptive integrator and the slip-rate threshold whose crossings it locates.
+    stepper: (Integrator, f64),
 }
 
 impl BlockScene {
@@ -52,7 +54,7 @@ impl BlockScene {
         let settings = WilsonSettings {
             theta: case.time.theta,
             velocity_scale: spec.base_velocity.abs().max(f64::MIN_POSITIVE),
-            energy_tolerance: Some(case.time.energy_tolerance),
+            energy_tolerance: (case.time.integrator == Integrator::Wilson).then_some(case.time.energy_tolerance),
             linear_solver,
             ..WilsonSettings::default()
         };
@@ -75,8 +77,10 @@ impl BlockScene {
                 .collect(),
             mesh: Some(mesh),
             driving_velocity: spec.base_velocity.abs(),
+            instantaneous_slip_rate: case.time.integrator == Integrator::Tsit5,
         };
-        Ok(Self { dynamics, mesh, layout })
+        let stepper = (case.time.integrator, case.slip_rate_threshold());
+        Ok(Self { dynamics, mesh, layout, stepper })
     }
 
     /// The integrator, for tests that inspect it.
@@ -111,7 +115,7 @@ impl Scene for BlockScene {
     }
 
     fn advance_adaptive(&mut self, control: &mut StepControl, limit: f64) -> Result<f64, RunError> {
-        advance_dynamics_adaptive(&mut self.dynamics, control, limit, |p| p / 2)
+        advance_dynamics_adaptive(&mut self.dynamics, control, limit, self.stepper, |p| p / 2)
     }
 
     fn frame(&self, needs: Needs, dt: f64) -> Frame {
@@ -122,8 +126,7 @@ impl Scene for BlockScene {
             .map(|k| {
                 segment_sample(
                     &d.contact.params,
-                    (2 * k..2 * k + 2).map(|p| (points[p].weight, s.contact[p], s.plastic_increment[p])),
-                    dt,
+                    (2 * k..2 * k + 2).map(|p| (points[p].weight, s.contact[p], s.slip_rate(p, dt))),
                     needs.segment_state,
                 )
             })

@@ -9,7 +9,7 @@ use std::fmt;
 
 use serde::{Deserialize, Serialize};
 
-use crate::case::{Case, SceneSpec};
+use crate::case::{Case, Integrator, SceneSpec};
 use crate::dynamics::{AdaptiveError, StepControl, StepError};
 use crate::friction::{ContactState, FrictionError, FrictionParams};
 
@@ -85,6 +85,10 @@ pub struct Layout {
     pub mesh: Option<crate::fem::StructuredMesh>,
     /// The driving velocity (m/s).
     pub driving_velocity: f64,
+    /// Whether the segments' slip rates are instantaneous values at each frame's time (the
+    /// Runge–Kutta integrator's `Λ`) rather than means `Δp/Δt` over the step that led to it.
+    #[serde(default)]
+    pub instantaneous_slip_rate: bool,
 }
 
 /// A contact segment.
@@ -190,22 +194,19 @@ pub fn build(case: &Case) -> Result<Box<dyn Scene>, RunError> {
     })
 }
 
-/// Averages the Gauss points `states` (with weights) into a segment sample.
+/// Averages the Gauss points `(weight, state, plastic slip rate)` into a segment sample.
 pub fn segment_sample(
     params: &FrictionParams,
     points: impl Iterator<Item = (f64, ContactState, f64)>,
-    dt: f64,
     full: bool,
 ) -> SegmentSample {
     let mut sample = SegmentSample::default();
     let mut total = 0.0;
-    for (weight, state, increment) in points {
+    for (weight, state, rate) in points {
         total += weight;
         sample.traction_t += weight * state.traction_t;
         sample.slip += weight * state.plastic_slip;
-        if dt > 0.0 {
-            sample.slip_rate += weight * increment / dt;
-        }
+        sample.slip_rate += weight * rate;
         if full {
             sample.traction_n += weight * state.traction_n;
             sample.sliding_ratio += weight * state.sliding_ratio(params);
@@ -235,16 +236,23 @@ pub fn advance_dynamics(
     dynamics.step(dt).map_err(|e| step_error(e, step, time, segment_of_point))
 }
 
-/// One adaptive step of `dynamics` ([`crate::dynamics::adaptive`]), with failures as in
+/// One adaptive step of `dynamics` by `integrator`: Wilson's method by step doubling
+/// ([`crate::dynamics::adaptive`]), or Tsitouras' pair with the crossings of the slip-rate
+/// `threshold` (m/s) located ([`crate::dynamics::runge_kutta`]). Failures as in
 /// [`advance_dynamics`].
 pub fn advance_dynamics_adaptive(
     dynamics: &mut crate::dynamics::Dynamics,
     control: &mut StepControl,
     limit: f64,
+    (integrator, threshold): (Integrator, f64),
     segment_of_point: impl Fn(usize) -> usize,
 ) -> Result<f64, RunError> {
     let (step, time) = (dynamics.state.step + 1, dynamics.state.time);
-    dynamics.adaptive_step(control, limit).map_err(|e| match e {
+    let taken = match integrator {
+        Integrator::Wilson => dynamics.adaptive_step(control, limit),
+        Integrator::Tsit5 => dynamics.runge_kutta_step(control, limit, threshold),
+    };
+    taken.map_err(|e| match e {
         AdaptiveError::Step(e) => step_error(e, step, time, segment_of_point),
         e @ AdaptiveError::StepTooSmall { .. } => RunError { step, time, segment: None, message: e.to_string() },
     })

@@ -38,6 +38,7 @@ impl PointScene {
             surface_nodes: Vec::new(),
             mesh: None,
             driving_velocity: spec.phases.iter().fold(0.0_f64, |m, p| m.max(p.velocity.abs())),
+            instantaneous_slip_rate: false,
         };
         Self { params, phases, layout, state, time: 0.0, step: 0, last_increment: 0.0, relative_slip: 0.0 }
     }
@@ -92,8 +93,7 @@ impl Scene for PointScene {
     fn frame(&self, needs: Needs, dt: f64) -> Frame {
         let sample = segment_sample(
             &self.params,
-            std::iter::once((1.0, self.state, self.last_increment)),
-            dt,
+            std::iter::once((1.0, self.state, if dt > 0.0 { self.last_increment / dt } else { 0.0 })),
             needs.segment_state,
         );
         Frame {

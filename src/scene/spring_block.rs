@@ -5,7 +5,7 @@ use super::{
     Frame, Layout, Needs, RunError, Scene, SceneKind, SegmentInfo, advance_dynamics, advance_dynamics_adaptive,
     segment_sample, step_error,
 };
-use crate::case::{Case, SpringBlockSpec};
+use crate::case::{Case, Integrator, SpringBlockSpec};
 use crate::dynamics::sparse::SymmetricMatrix;
 use crate::dynamics::{ContactBoundary, ContactPoint, Dynamics, LinearBody, StepControl, WilsonSettings};
 
@@ -15,6 +15,8 @@ pub struct SpringBlockScene {
     dynamics: Dynamics,
     layout: Layout,
     velocity: f64,
+    /// The adaptive integrator and the slip-rate threshold whose crossings it locates.
+    stepper: (Integrator, f64),
 }
 
 impl SpringBlockScene {
@@ -36,7 +38,7 @@ impl SpringBlockScene {
         let settings = WilsonSettings {
             theta: case.time.theta,
             velocity_scale: spec.velocity.abs().max(f64::MIN_POSITIVE),
-            energy_tolerance: Some(case.time.energy_tolerance),
+            energy_tolerance: (case.time.integrator == Integrator::Wilson).then_some(case.time.energy_tolerance),
             ..WilsonSettings::default()
         };
         let dynamics = Dynamics::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |_| 0))?;
@@ -46,8 +48,10 @@ impl SpringBlockScene {
             surface_nodes: Vec::new(),
             mesh: None,
             driving_velocity: spec.velocity.abs(),
+            instantaneous_slip_rate: case.time.integrator == Integrator::Tsit5,
         };
-        Ok(Self { dynamics, layout, velocity: spec.velocity })
+        let stepper = (case.time.integrator, case.slip_rate_threshold());
+        Ok(Self { dynamics, layout, velocity: spec.velocity, stepper })
     }
 
     /// The integrator, for tests that inspect it.
@@ -75,15 +79,14 @@ impl Scene for SpringBlockScene {
     }
 
     fn advance_adaptive(&mut self, control: &mut StepControl, limit: f64) -> Result<f64, RunError> {
-        advance_dynamics_adaptive(&mut self.dynamics, control, limit, |_| 0)
+        advance_dynamics_adaptive(&mut self.dynamics, control, limit, self.stepper, |_| 0)
     }
 
     fn frame(&self, needs: Needs, dt: f64) -> Frame {
         let s = &self.dynamics.state;
         let sample = segment_sample(
             &self.dynamics.contact.params,
-            std::iter::once((1.0, s.contact[0], s.plastic_increment[0])),
-            dt,
+            std::iter::once((1.0, s.contact[0], s.slip_rate(0, dt))),
             needs.segment_state,
         );
         Frame {

@@ -3,7 +3,9 @@
 //! A segment slips while its plastic slip rate exceeds the threshold. The slip rate of a step,
 //! `Δp/Δt`, is the mean over the step, so it is placed at the step's midpoint; onsets and ends
 //! are where the linear interpolation between midpoints crosses the threshold, and the slip and
-//! traction there are interpolated between frames. With a merge window `w > 0`, a segment's
+//! traction there are interpolated between frames. Where the slip rates are instantaneous
+//! (the Runge–Kutta integrator's `Λ`, [`crate::scene::Layout::instantaneous_slip_rate`]), they
+//! are placed at the frames' times instead. With a merge window `w > 0`, a segment's
 //! event that starts less than `w` after its previous one ended continues that event (the slip
 //! rate of a decelerating segment can flicker about the threshold in its tail).
 
@@ -115,6 +117,8 @@ impl SegmentTrack {
 pub struct EventDetector {
     threshold: f64,
     merge_within: f64,
+    /// Slip rates are instantaneous, at the frame's time (not step means at the midpoint).
+    instantaneous: bool,
     tracks: Vec<SegmentTrack>,
     events: Vec<SlipEvent>,
 }
@@ -123,7 +127,20 @@ impl EventDetector {
     /// A detector for `segments` segments and a slip-rate threshold (m/s), merging a segment's
     /// events separated by less than `merge_within` (s; 0 merges nothing).
     pub fn new(segments: usize, threshold: f64, merge_within: f64) -> Self {
-        Self { threshold, merge_within, tracks: vec![SegmentTrack::default(); segments], events: Vec::new() }
+        Self {
+            threshold,
+            merge_within,
+            instantaneous: false,
+            tracks: vec![SegmentTrack::default(); segments],
+            events: Vec::new(),
+        }
+    }
+
+    /// The same detector for frames whose slip rates are instantaneous values at the frame's
+    /// time ([`crate::scene::Layout::instantaneous_slip_rate`]).
+    pub fn with_instantaneous_rates(mut self, instantaneous: bool) -> Self {
+        self.instantaneous = instantaneous;
+        self
     }
 
     /// Feeds one frame (the initial frame, with `dt = 0`, included).
@@ -140,7 +157,7 @@ impl EventDetector {
             if frame.dt <= 0.0 {
                 continue;
             }
-            let mid = frame.time - 0.5 * frame.dt;
+            let mid = if self.instantaneous { frame.time } else { frame.time - 0.5 * frame.dt };
             let rate = seg.slip_rate;
             let (t0, r0) = track.rate.unwrap_or((track.previous.map_or(0.0, |p| p.time), 0.0));
             let crossing = |level: f64| if rate == r0 { mid } else { t0 + (level - r0) / (rate - r0) * (mid - t0) };
