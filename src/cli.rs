@@ -195,14 +195,7 @@ fn run_command(args: RunArgs) -> ExitCode {
         Ok(stream) => stream,
         Err(e) => return fail(EXIT_INVALID, e),
     };
-    let plan = RecordingPlan {
-        case: stem.clone(),
-        t_end: case.time.t_end,
-        dt: case.time.dt,
-        steps: case.time.steps(),
-        slip_rate_threshold: case.slip_rate_threshold(),
-        spec: case.record.clone(),
-    };
+    let plan = RecordingPlan::for_case(&stem, &case);
     let mut sinks: Vec<Box<dyn Sink>> =
         vec![Box::new(CatalogSink::new(events_path.clone(), Some(ruptures_path.clone())))];
     if let Some(path) = &args.mcap {

@@ -124,14 +124,7 @@ fn load(name: &str, sets: &[&str]) -> Case {
 fn run_recorded(case: &Case, path: &Path) -> (Vec<Frame>, Catalog) {
     let mut scene = scene::build(case).unwrap();
     let stream = open_stream(Some(path), &Viewer::None, "test").unwrap().unwrap();
-    let plan = RecordingPlan {
-        case: "test".into(),
-        t_end: case.time.t_end,
-        dt: case.time.dt,
-        steps: case.time.steps(),
-        slip_rate_threshold: case.slip_rate_threshold(),
-        spec: case.record.clone(),
-    };
+    let plan = RecordingPlan::for_case("test", case);
     let frames = Frames::default();
     let collected = frames.0.clone();
     let mut sinks: Vec<Box<dyn Sink>> = vec![Box::new(RerunSink::new(stream, plan)), Box::new(frames)];
@@ -280,6 +273,29 @@ fn check_passes_a_fresh_recording_and_its_expectations() {
     assert!(text.contains("FAIL: at[0]: contact/friction_force = "), "{text}");
 }
 
+#[test]
+fn a_recording_says_how_its_run_was_stepped() {
+    // The run description names the integrator and, for adaptive steps, its tolerance; `check`
+    // reads them back, and accepts a Tsit5 recording whose times are those of adaptive steps
+    // ending on slip-threshold crossings.
+    let out = scratch("stepping");
+    let sets = ["time.integrator=tsit5", "time.tolerance=1e-9", "time.t_end=850"];
+    let (code, text) = check_cli(&run_cli("spring_block", &sets, &out), None);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("t_end = 850 s by Tsitouras' 5(4) pair from a step of 0.005 s, tolerance 1e-9 per step"),
+        "{text}"
+    );
+    assert!(text.contains("2 slip events"), "the spring block slips twice before 850 s: {text}");
+    let (code, text) = check_cli(&run_cli("spring_block", &["time.t_end=50"], &out), None);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("t_end = 50 s in 10000 steps of 0.005 s"), "{text}");
+    let sets = ["time.tolerance=1e-6", "time.t_end=50"];
+    let (code, text) = check_cli(&run_cli("spring_block", &sets, &out), None);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("in adaptive Wilson steps from 0.005 s, tolerance 1e-6 per simulated second"), "{text}");
+}
+
 /// Rewrites a recording without the chunks of `entity`.
 fn without_entity(from: &Path, to: &Path, entity: &str) {
     use rerun::external::re_log_encoding::{DecoderApp, Encoder};
@@ -324,6 +340,8 @@ fn check_catches_a_nan() {
         t_end: 1.0,
         dt: 0.1,
         steps: 10,
+        integrator: Default::default(),
+        tolerance: None,
         slip_rate_threshold: 0.01,
         spec: slipfront::case::RecordSpec { stick_every: 1, ..Default::default() },
     };

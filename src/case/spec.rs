@@ -59,7 +59,7 @@ pub struct TimeSpec {
 }
 
 /// `time.integrator`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Integrator {
     /// Wilson's θ method with the implicit friction update (the paper's §2.2): fixed steps of

@@ -116,8 +116,12 @@ pub fn check(recording: &Recording, expect: &Expectations) -> Report {
     };
     let ending: Option<RunEnding> = recording.static_texts.get(schema::RUN_ENDING).and_then(|t| toml::from_str(t).ok());
     report.summary.push(format!(
-        "{} ({} scene, {} segments), t_end = {} s in {} steps of {} s",
-        info.case, info.kind, info.segments, info.t_end, info.steps, info.dt
+        "{} ({} scene, {} segments), t_end = {} s {}",
+        info.case,
+        info.kind,
+        info.segments,
+        info.t_end,
+        info.stepping()
     ));
     match &ending {
         None => problems.push(format!(

@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::case::RecordSpec;
+use crate::case::{Case, Integrator, RecordSpec};
 use crate::scene::{Frame, Layout, SceneKind, SegmentSample};
 
 /// Application id of every recording.
@@ -132,8 +132,50 @@ pub struct RecordingPlan {
     pub dt: f64,
     /// Planned steps.
     pub steps: u64,
+    /// The time integrator (`time.integrator`); Wilson's in recordings from before it was named.
+    #[serde(default)]
+    pub integrator: Integrator,
+    /// The adaptive steps' tolerance, if steps are adaptive (`time.tolerance`, or Tsit5's default).
+    #[serde(default)]
+    pub tolerance: Option<f64>,
     pub slip_rate_threshold: f64,
     pub spec: RecordSpec,
+}
+
+impl RecordingPlan {
+    /// The plan of a run of `case`, whose file stem is `name`.
+    pub fn for_case(name: &str, case: &Case) -> Self {
+        Self {
+            case: name.into(),
+            t_end: case.time.t_end,
+            dt: case.time.dt,
+            steps: case.time.steps(),
+            integrator: case.time.integrator,
+            tolerance: case.time.adaptive_tolerance(),
+            slip_rate_threshold: case.slip_rate_threshold(),
+            spec: case.record.clone(),
+        }
+    }
+
+    /// How the run steps, for people: `in N steps of dt s`, or the adaptive integrator and its
+    /// tolerance.
+    pub fn stepping(&self) -> String {
+        stepping(self.integrator, self.tolerance, self.steps, self.dt)
+    }
+}
+
+/// See [`RecordingPlan::stepping`].
+fn stepping(integrator: Integrator, tolerance: Option<f64>, steps: u64, dt: f64) -> String {
+    match (integrator, tolerance) {
+        (Integrator::Wilson, None) => format!("in {steps} steps of {dt} s"),
+        (Integrator::Wilson, Some(tolerance)) => {
+            format!("in adaptive Wilson steps from {dt} s, tolerance {tolerance:e} per simulated second")
+        }
+        (Integrator::Tsit5, tolerance) => format!(
+            "by Tsitouras' 5(4) pair from a step of {dt} s, tolerance {:e} per step",
+            tolerance.unwrap_or(crate::case::TSIT5_DEFAULT_TOLERANCE)
+        ),
+    }
 }
 
 /// What a series reads from a frame.
@@ -240,8 +282,14 @@ pub struct RunInfo {
     pub kind: crate::scene::SceneKind,
     pub t_end: f64,
     pub dt: f64,
-    /// Planned steps.
+    /// Planned steps (fixed steps only).
     pub steps: u64,
+    /// See [`RecordingPlan::integrator`].
+    #[serde(default)]
+    pub integrator: Integrator,
+    /// See [`RecordingPlan::tolerance`].
+    #[serde(default)]
+    pub tolerance: Option<f64>,
     /// Contact segments of the scene.
     pub segments: usize,
     pub recorded_segments: Vec<usize>,
@@ -265,6 +313,11 @@ pub struct RunInfo {
 }
 
 impl RunInfo {
+    /// How the run steps ([`RecordingPlan::stepping`]).
+    pub fn stepping(&self) -> String {
+        stepping(self.integrator, self.tolerance, self.steps, self.dt)
+    }
+
     /// The description of a run over `layout` recording `series`.
     pub fn new(
         plan: &RecordingPlan,
@@ -285,6 +338,8 @@ impl RunInfo {
             t_end: plan.t_end,
             dt: plan.dt,
             steps: plan.steps,
+            integrator: plan.integrator,
+            tolerance: plan.tolerance,
             segments: layout.segments.len(),
             recorded_segments: segments.to_vec(),
             segment_labels: segments
