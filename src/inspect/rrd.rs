@@ -128,7 +128,7 @@ pub fn from_messages(messages: impl Iterator<Item = Result<LogMsg, String>>) -> 
             let times = chunk.iter_component_indices(time_timeline, scalars);
             for (((step, _), (time, _)), values) in steps.zip(times).zip(chunk.iter_slices::<f64>(scalars)) {
                 series.steps.push(step.as_i64());
-                series.times.push(time.as_i64() as f64 * 1e-9);
+                series.times.push(time.as_i64() as f64 / 1e9);
                 series.values.push(values.first().copied().unwrap_or(f64::NAN));
             }
         }
@@ -136,7 +136,7 @@ pub fn from_messages(messages: impl Iterator<Item = Result<LogMsg, String>>) -> 
             let times = chunk.iter_component_indices(time_timeline, log_text);
             for ((time, _), texts) in times.zip(chunk.iter_slices::<String>(log_text)) {
                 for t in texts {
-                    recording.text_logs.push((entity.clone(), time.as_i64() as f64 * 1e-9, t.as_str().to_string()));
+                    recording.text_logs.push((entity.clone(), time.as_i64() as f64 / 1e9, t.as_str().to_string()));
                 }
             }
         }
