@@ -121,8 +121,10 @@ pub struct CheckArgs {
 pub struct RunArgs {
     /// The case file (TOML, SI units; see cases/ and the README).
     pub case: PathBuf,
-    /// Override a case key, e.g. --set time.t_end=50 or --set friction.rstar_law=eq4.
-    /// Repeatable; checked by the same rules as the file.
+    /// Override a case key, e.g. --set time.t_end=50, --set friction.rstar_law=eq4, or
+    /// --set time.integrator=tsit5 (Tsitouras' adaptive 5(4) pair instead of Wilson's θ method,
+    /// tolerance 1e-8 per step unless time.tolerance says otherwise). Repeatable; checked by
+    /// the same rules as the file.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub overrides: Vec<String>,
     /// Folder for every output (created if missing).
