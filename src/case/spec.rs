@@ -72,16 +72,6 @@ pub enum Integrator {
     Tsit5,
 }
 
-impl Integrator {
-    /// The case file's name for it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Integrator::Wilson => "wilson",
-            Integrator::Tsit5 => "tsit5",
-        }
-    }
-}
-
 /// Local error per step of `tsit5` when `time.tolerance` is not given.
 pub const TSIT5_DEFAULT_TOLERANCE: f64 = 1e-8;
 
