@@ -138,4 +138,10 @@ impl Case {
     pub fn slip_rate_threshold(&self) -> f64 {
         self.events.slip_rate_threshold.unwrap_or(10.0 * self.scene.driving_velocity())
     }
+
+    /// The integrator of adaptive steps and the slip-rate threshold whose crossings Tsitouras'
+    /// pair locates ([`crate::scene::advance_dynamics_adaptive`]).
+    pub fn stepper(&self) -> (Integrator, f64) {
+        (self.time.integrator, self.slip_rate_threshold())
+    }
 }

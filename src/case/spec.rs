@@ -142,6 +142,18 @@ impl TimeSpec {
         }
     }
 
+    /// The energy guard's share (`energy_tolerance`) where the integrator keeps an energy
+    /// ledger: Wilson's method does; Tsitouras' pair does not, its error control bounds its steps.
+    pub fn energy_guard(&self) -> Option<f64> {
+        (self.integrator == Integrator::Wilson).then_some(self.energy_tolerance)
+    }
+
+    /// Whether the integrator reports each point's plastic slip rate `Λ` at the end of a step
+    /// (Tsitouras' pair) rather than the step's mean `Δp/Δt` (Wilson's method).
+    pub fn instantaneous_slip_rate(&self) -> bool {
+        self.integrator == Integrator::Tsit5
+    }
+
     /// Largest adaptive step (s).
     pub fn dt_max(&self) -> f64 {
         self.dt_max.unwrap_or(self.t_end / 100.0)

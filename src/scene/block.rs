@@ -54,7 +54,7 @@ impl BlockScene {
         let settings = WilsonSettings {
             theta: case.time.theta,
             velocity_scale: spec.base_velocity.abs().max(f64::MIN_POSITIVE),
-            energy_tolerance: (case.time.integrator == Integrator::Wilson).then_some(case.time.energy_tolerance),
+            energy_tolerance: case.time.energy_guard(),
             linear_solver,
             ..WilsonSettings::default()
         };
@@ -77,9 +77,9 @@ impl BlockScene {
                 .collect(),
             mesh: Some(mesh),
             driving_velocity: spec.base_velocity.abs(),
-            instantaneous_slip_rate: case.time.integrator == Integrator::Tsit5,
+            instantaneous_slip_rate: case.time.instantaneous_slip_rate(),
         };
-        let stepper = (case.time.integrator, case.slip_rate_threshold());
+        let stepper = case.stepper();
         Ok(Self { dynamics, mesh, layout, stepper })
     }
 

@@ -38,7 +38,7 @@ impl SpringBlockScene {
         let settings = WilsonSettings {
             theta: case.time.theta,
             velocity_scale: spec.velocity.abs().max(f64::MIN_POSITIVE),
-            energy_tolerance: (case.time.integrator == Integrator::Wilson).then_some(case.time.energy_tolerance),
+            energy_tolerance: case.time.energy_guard(),
             ..WilsonSettings::default()
         };
         let dynamics = Dynamics::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |_| 0))?;
@@ -48,9 +48,9 @@ impl SpringBlockScene {
             surface_nodes: Vec::new(),
             mesh: None,
             driving_velocity: spec.velocity.abs(),
-            instantaneous_slip_rate: case.time.integrator == Integrator::Tsit5,
+            instantaneous_slip_rate: case.time.instantaneous_slip_rate(),
         };
-        let stepper = (case.time.integrator, case.slip_rate_threshold());
+        let stepper = case.stepper();
         Ok(Self { dynamics, layout, velocity: spec.velocity, stepper })
     }
 
