@@ -123,8 +123,10 @@ pub struct RunArgs {
     pub case: PathBuf,
     /// Override a case key, e.g. --set time.t_end=50, --set friction.rstar_law=eq4, or
     /// --set time.integrator=tsit5 (Tsitouras' adaptive 5(4) pair instead of Wilson's θ method,
-    /// tolerance 1e-8 per step unless time.tolerance says otherwise). Repeatable; checked by
-    /// the same rules as the file.
+    /// tolerance 1e-8 per step unless time.tolerance says otherwise) or
+    /// --set time.integrator=central (explicit central differences, sub-stepped to their
+    /// stability limit: the fastest on fine meshes). Repeatable; checked by the same rules as
+    /// the file.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub overrides: Vec<String>,
     /// Folder for every output (created if missing).

@@ -105,7 +105,18 @@ fn time_rules() {
     expect_invalid(
         &c,
         &["time.integrator=rk4"],
-        "time.integrator: unknown variant `rk4`, expected `wilson` or `tsit5`",
+        "time.integrator: unknown variant `rk4`, expected one of `wilson`, `tsit5`, `central`",
+    );
+    expect_invalid(
+        &c,
+        &["time.integrator=central", "time.tolerance=1e-5"],
+        "time.tolerance = 0.00001 does not apply to time.integrator = \"central\", which takes fixed frames of \
+         time.dt sub-stepped to its stability limit",
+    );
+    expect_invalid(
+        &case("point_loading.toml"),
+        &["time.integrator=central"],
+        "time.integrator = central is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
     );
     expect_invalid(
         &case("point_loading.toml"),

@@ -108,10 +108,12 @@ impl Case {
                 "is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
             );
         }
-        if let (Integrator::Tsit5, SceneSpec::Point(_)) = (self.time.integrator, &self.scene) {
+        if let (integrator @ (Integrator::Tsit5 | Integrator::Central), SceneSpec::Point(_)) =
+            (self.time.integrator, &self.scene)
+        {
             time.fail(
                 "integrator",
-                "tsit5",
+                integrator.name(),
                 "is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
             );
         }

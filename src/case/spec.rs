@@ -52,8 +52,9 @@ pub struct TimeSpec {
     /// Largest adaptive step (s); `t_end / 100` by default.
     #[serde(default)]
     pub dt_max: Option<f64>,
-    /// The time integrator of dynamic scenes: Wilson's θ method (the paper's, by default) or
-    /// Tsitouras' explicit Runge–Kutta 5(4) pair on the rate form.
+    /// The time integrator of dynamic scenes: Wilson's θ method (the paper's, by default),
+    /// Tsitouras' explicit Runge–Kutta 5(4) pair on the rate form, or explicit central
+    /// differences.
     #[serde(default)]
     pub integrator: Integrator,
 }
@@ -70,6 +71,21 @@ pub enum Integrator {
     /// instants where a contact point's slip rate crosses the event threshold located
     /// ([`crate::dynamics::runge_kutta`]). `tolerance` is its local error per step.
     Tsit5,
+    /// Explicit central differences for the body with the implicit friction update of each
+    /// step ([`crate::dynamics::central`]): frames every `dt`, each taken in the fewest equal
+    /// sub-steps the stability limit allows. No `tolerance`.
+    Central,
+}
+
+impl Integrator {
+    /// The case file's name for it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Integrator::Wilson => "wilson",
+            Integrator::Tsit5 => "tsit5",
+            Integrator::Central => "central",
+        }
+    }
 }
 
 /// Local error per step of `tsit5` when `time.tolerance` is not given.
@@ -103,10 +119,21 @@ impl TimeSpec {
             && !(tolerance > 0.0 && tolerance <= 0.1)
         {
             let meaning = match self.integrator {
-                Integrator::Wilson => "a relative local error per second, 1/s",
+                Integrator::Wilson | Integrator::Central => "a relative local error per second, 1/s",
                 Integrator::Tsit5 => "a relative local error per step of tsit5",
             };
             c.fail("tolerance", tolerance, format!("must lie in (0, 0.1] ({meaning})"));
+        }
+        if let (Some(tolerance), Integrator::Central) = (self.tolerance, self.integrator) {
+            c.fail(
+                "tolerance",
+                tolerance,
+                format!(
+                    "does not apply to {} = \"central\", which takes fixed frames of {} sub-stepped to its stability limit",
+                    c.key("integrator"),
+                    c.key("dt")
+                ),
+            );
         }
         if let Some(dt_max) = self.dt_max {
             if self.adaptive_tolerance().is_none() {
@@ -139,11 +166,13 @@ impl TimeSpec {
         match self.integrator {
             Integrator::Wilson => self.tolerance,
             Integrator::Tsit5 => Some(self.tolerance.unwrap_or(TSIT5_DEFAULT_TOLERANCE)),
+            Integrator::Central => None,
         }
     }
 
     /// The energy guard's share (`energy_tolerance`) where the integrator keeps an energy
-    /// ledger: Wilson's method does; Tsitouras' pair does not, its error control bounds its steps.
+    /// ledger: Wilson's method does; Tsitouras' pair does not, its error control bounds its
+    /// steps; nor do central differences, which conserve energy up to their truncation error.
     pub fn energy_guard(&self) -> Option<f64> {
         (self.integrator == Integrator::Wilson).then_some(self.energy_tolerance)
     }
@@ -152,6 +181,12 @@ impl TimeSpec {
     /// (Tsitouras' pair) rather than the step's mean `Δp/Δt` (Wilson's method).
     pub fn instantaneous_slip_rate(&self) -> bool {
         self.integrator == Integrator::Tsit5
+    }
+
+    /// Whether every step is one of Wilson's method of `dt`: the only stepping for which a
+    /// large body is condensed onto its contact ([`crate::dynamics::condensed`]).
+    pub fn fixed_implicit_steps(&self) -> bool {
+        self.integrator == Integrator::Wilson && self.tolerance.is_none()
     }
 
     /// Largest adaptive step (s).
@@ -165,7 +200,7 @@ impl TimeSpec {
     /// of eq. 5's denominator) with steps that grow geometrically from picoseconds.
     pub fn dt_min(&self) -> f64 {
         match self.integrator {
-            Integrator::Wilson => self.t_end / MAX_STEPS,
+            Integrator::Wilson | Integrator::Central => self.t_end / MAX_STEPS,
             Integrator::Tsit5 => 4.0 * f64::EPSILON * self.t_end,
         }
     }

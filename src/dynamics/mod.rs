@@ -2,11 +2,13 @@
 
 pub mod adaptive;
 pub mod body;
+pub mod central;
 pub mod condensed;
 pub mod contact;
 mod newton;
 pub mod runge_kutta;
 pub mod sparse;
+pub mod templates;
 pub mod wilson;
 
 pub use adaptive::{AdaptiveError, StepControl};

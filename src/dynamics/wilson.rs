@@ -227,7 +227,9 @@ pub struct Dynamics {
     diagonal: Vec<usize>,
     stiffness_entries: Vec<usize>,
     point_entries: Vec<[usize; 4]>,
-    cholesky: Cholesky,
+    /// The Jacobian's factorization, analyzed at its first use (Tsitouras' pair and central
+    /// differences never need it).
+    cholesky: Option<Cholesky>,
     factored: Option<(f64, Vec<f64>)>,
     ledger: Option<EnergyLedger>,
     /// `Σ w (μ_k f_n)² / 2α_t`: the contact springs' energy at kinetic strength, the scale the
@@ -240,6 +242,8 @@ pub struct Dynamics {
     condensations: Vec<Condensation>,
     /// The Runge–Kutta integrator's memory, when it is the one stepping.
     pub(super) runge_kutta: Option<super::runge_kutta::RungeKutta>,
+    /// Central differences' memory, when they are the ones stepping.
+    pub(super) central: Option<super::central::CentralDifference>,
 }
 
 /// How many `τ` keep their factored body operator (a halved step needs another; each holds a
@@ -282,7 +286,7 @@ impl NewtonProblem for FullSystem<'_> {
 
     fn correct(&mut self, evaluation: &ContactResponse, delta: &mut [f64]) -> Result<(), StepError> {
         self.dynamics.factor_jacobian(self.tau, &evaluation.stiffness)?;
-        self.dynamics.cholesky.solve_in_place(delta);
+        self.dynamics.cholesky.as_ref().expect("factored above").solve_in_place(delta);
         Ok(())
     }
 }
@@ -361,7 +365,6 @@ impl Dynamics {
                 [pos(0, 0), pos(0, 1), pos(1, 0), pos(1, 1)]
             })
             .collect();
-        let cholesky = Cholesky::analyze(&jacobian).map_err(StepError::Factor)?;
         let n_points = contact.points.len();
         let p = &contact.params;
         let energy_scale = contact
@@ -390,7 +393,7 @@ impl Dynamics {
             diagonal,
             stiffness_entries,
             point_entries,
-            cholesky,
+            cholesky: None,
             factored: None,
             ledger: None,
             energy_scale,
@@ -398,6 +401,7 @@ impl Dynamics {
             restarts: Vec::new(),
             condensations: Vec::new(),
             runge_kutta: None,
+            central: None,
         };
         if dynamics.settings.energy_tolerance.is_some() {
             dynamics.track_energy();
@@ -422,7 +426,11 @@ impl Dynamics {
     /// not converging across a stick/slip switch, `1/R*` leaving its range, a singular
     /// operator) is retried as two half steps, down to `dt / 2^MAX_HALVINGS`; the state is left
     /// untouched by a failed attempt.
+    /// With central differences in use ([`Self::use_central_differences`]), the step is theirs.
     pub fn step(&mut self, dt: f64) -> Result<(), StepError> {
+        if self.central.is_some() {
+            return self.central_step(dt);
+        }
         self.step_halving(dt, 0)
     }
 
@@ -647,7 +655,11 @@ impl Dynamics {
             values[entries[2]] += k * n1 * n0;
             values[entries[3]] += k * n1 * n1;
         }
-        self.cholesky.factor(&self.jacobian).map_err(StepError::Factor)?;
+        let cholesky = match self.cholesky.as_mut() {
+            Some(cholesky) => cholesky,
+            None => self.cholesky.insert(Cholesky::analyze(&self.jacobian).map_err(StepError::Factor)?),
+        };
+        cholesky.factor(&self.jacobian).map_err(StepError::Factor)?;
         self.factored = Some((tau, contact_stiffness.to_vec()));
         Ok(())
     }

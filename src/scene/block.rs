@@ -3,7 +3,7 @@
 
 use super::{
     Frame, Layout, Needs, NodeInfo, RunError, Scene, SceneKind, SegmentInfo, advance_dynamics,
-    advance_dynamics_adaptive, segment_sample, step_error,
+    advance_dynamics_adaptive, dynamics_for, segment_sample,
 };
 use crate::case::{BlockSpec, Case, Integrator};
 use crate::dynamics::{Dynamics, LinearSolver, StepControl, WilsonSettings, condensation_pays};
@@ -46,7 +46,7 @@ impl BlockScene {
         );
         // A large body at a fixed step is condensed onto its contact; adaptive steps change τ
         // every attempt, and each new τ would need the body refactored.
-        let linear_solver = if condensation_pays(body.dofs(), spec.nx + 1) && case.time.tolerance.is_none() {
+        let linear_solver = if condensation_pays(body.dofs(), spec.nx + 1) && case.time.fixed_implicit_steps() {
             LinearSolver::Condensed
         } else {
             LinearSolver::Full
@@ -58,7 +58,7 @@ impl BlockScene {
             linear_solver,
             ..WilsonSettings::default()
         };
-        let dynamics = Dynamics::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |p| p / 2))?;
+        let dynamics = dynamics_for(case, body, contact, settings, |p| p / 2)?;
         let name_of = |probes: &[crate::case::Probe], index: usize| {
             probes.iter().find(|p| p.index == index).map(|p| p.name.clone())
         };

@@ -225,6 +225,22 @@ pub fn segment_sample(
     sample
 }
 
+/// The integrator of a dynamic scene, set up as the case's `time.integrator` asks.
+pub fn dynamics_for(
+    case: &Case,
+    body: crate::dynamics::LinearBody,
+    contact: crate::dynamics::ContactBoundary,
+    settings: crate::dynamics::WilsonSettings,
+    segment_of_point: impl Fn(usize) -> usize,
+) -> Result<crate::dynamics::Dynamics, RunError> {
+    let mut dynamics =
+        crate::dynamics::Dynamics::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, segment_of_point))?;
+    if case.time.integrator == Integrator::Central {
+        dynamics.use_central_differences();
+    }
+    Ok(dynamics)
+}
+
 /// Advances a dynamic scene's integrator by `dt`, reporting a failure with the step, the time
 /// it started from and the segment of the contact point involved.
 pub fn advance_dynamics(
@@ -251,6 +267,8 @@ pub fn advance_dynamics_adaptive(
     let taken = match integrator {
         Integrator::Wilson => dynamics.adaptive_step(control, limit),
         Integrator::Tsit5 => dynamics.runge_kutta_step(control, limit, threshold),
+        // Central differences take fixed frames (their cases refuse a tolerance).
+        Integrator::Central => dynamics.step(limit).map(|()| limit).map_err(AdaptiveError::Step),
     };
     taken.map_err(|e| match e {
         AdaptiveError::Step(e) => step_error(e, step, time, segment_of_point),

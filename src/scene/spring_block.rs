@@ -3,7 +3,7 @@
 
 use super::{
     Frame, Layout, Needs, RunError, Scene, SceneKind, SegmentInfo, advance_dynamics, advance_dynamics_adaptive,
-    segment_sample, step_error,
+    dynamics_for, segment_sample,
 };
 use crate::case::{Case, Integrator, SpringBlockSpec};
 use crate::dynamics::sparse::SymmetricMatrix;
@@ -41,7 +41,7 @@ impl SpringBlockScene {
             energy_tolerance: case.time.energy_guard(),
             ..WilsonSettings::default()
         };
-        let dynamics = Dynamics::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |_| 0))?;
+        let dynamics = dynamics_for(case, body, contact, settings, |_| 0)?;
         let layout = Layout {
             kind: SceneKind::SpringBlock,
             segments: vec![SegmentInfo { left: 0.0, right: 0.0, name: None }],

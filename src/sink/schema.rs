@@ -171,6 +171,9 @@ fn stepping(integrator: Integrator, tolerance: Option<f64>, steps: u64, dt: f64)
         (Integrator::Wilson, Some(tolerance)) => {
             format!("in adaptive Wilson steps from {dt} s, tolerance {tolerance:e} per simulated second")
         }
+        (Integrator::Central, _) => {
+            format!("in {steps} frames of {dt} s by central differences, each sub-stepped to the stability limit")
+        }
         (Integrator::Tsit5, tolerance) => format!(
             "by Tsitouras' 5(4) pair from a step of {dt} s, tolerance {:e} per step",
             tolerance.unwrap_or(crate::case::TSIT5_DEFAULT_TOLERANCE)

@@ -1,0 +1,305 @@
+//! Explicit central differences for the body, with the implicit friction update of each step.
+//!
+//! Wilson's θ method ([`super::wilson`]) solves a system of the whole body per step; on a fine
+//! mesh that solve is most of the cost (a 1000 × 100 block: two sparse triangular solves with
+//! a factor of 200 000 unknowns, about 0.15 s a step). Dynamic rupture codes integrate the body
+//! explicitly instead, with a diagonal (lumped) mass, so that a step costs one product with `K`
+//! (e.g. Day et al., *Comparison of finite difference and boundary integral solutions to
+//! three-dimensional spontaneous rupture*, JGR 110 (2005); Kaneko, Lapusta & Ampuero, JGR 113
+//! (2008)). This module does that for the total form of eq. (14), `M a + K u = f⁰ + f_c - f_c(0)`,
+//! by the velocity form of central differences (Newmark's β = 0, γ = ½):
+//!
+//! * `v_{n+½} = v_n + ½h a_n`, `u_{n+1} = u_n + h v_{n+½}`;
+//! * each contact point is advanced over `[t_n, t_{n+1}]` by the paper's implicit friction
+//!   update ([`crate::friction::update`], eqs. 4–9 over the step) with the relative slip
+//!   increment `Ñ (u_{n+1} - u_n) - Δu_base` of eq. (13), which is now known;
+//! * `a_{n+1} = M⁻¹ (f⁰(t_{n+1}) - K u_{n+1} + f_c - f_c(0))`, `v_{n+1} = v_{n+½} + ½h a_{n+1}`.
+//!
+//! The scheme is second order and does not dissipate: the body's modes keep their energy, where
+//! Wilson's `θ = 1.4` damps those with `ωΔt` near 1 and above. It is stable while
+//! `h ω_max ≤ 2`, for the highest angular frequency `ω_max` of `M⁻¹ (K + K_t)`, where `K_t`
+//! holds the contact's elastic tangential springs `α_t ∫ Ñᵀ Ñ ds` (the friction update never
+//! responds more stiffly than `α_t`). [`highest_frequency`] finds `ω_max` by Lanczos'
+//! iteration; each frame of the case's `dt` is then taken as the fewest equal sub-steps of at
+//! most [`STABILITY_SHARE`]` × 2/ω_max`. On the paper's 10 × 1 mesh `ω_max ≈ 50 rad/s` and a
+//! frame of 0.01 s is one step; on 1000 × 100 `ω_max ≈ 550 rad/s`, about 3 ms.
+//!
+//! A friction update that fails in a way shorter steps cure (`1/R*` leaving its range in the
+//! trapezoidal rule of eq. 4, the consistency solve not converging) is repeated in two halves
+//! of the same slip, down to `h / 2^MAX_HALVINGS`; the body's step is not repeated.
+
+use rayon::prelude::*;
+
+use super::body::LinearBody;
+use super::contact::ContactBoundary;
+use super::templates::TemplateMatrix;
+use super::wilson::{Dynamics, MAX_HALVINGS, StepError};
+use crate::friction::{ContactState, FrictionError, FrictionParams, Restart, Update, update_from};
+
+/// Share of the stability limit `2/ω_max` that the sub-steps use: it covers Lanczos'
+/// estimate, which approaches `ω_max` from below (see [`highest_frequency`]).
+pub const STABILITY_SHARE: f64 = 0.9;
+
+/// Lanczos iterations for `ω_max`.
+const LANCZOS_STEPS: usize = 100;
+
+/// What central differences keep between steps.
+pub(crate) struct CentralDifference {
+    /// The highest angular frequency of the body with elastic contact springs (rad/s).
+    omega_max: f64,
+    /// `K` by runs of equal node stencils, where the body has node pairs; else its compressed
+    /// form serves.
+    stiffness: Option<TemplateMatrix>,
+    /// The runs of `stiffness` in one group per parallel task.
+    chunks: Vec<(usize, usize, usize)>,
+    /// `K u`.
+    stiffness_force: Vec<f64>,
+    /// `u` with each node's two values exchanged (see [`TemplateMatrix`]).
+    swapped: Vec<f64>,
+    /// `1/m` per degree of freedom.
+    inverse_mass: Vec<f64>,
+    /// The degrees of freedom the contact points act on, ascending.
+    contact_dofs: Vec<usize>,
+    /// `f_c - f_c(0)`: nonzero only on `contact_dofs`.
+    contact_force: Vec<f64>,
+    /// Each contact point's interpolated displacement `Ñ u` at the last step.
+    contact_displacement: Vec<f64>,
+    /// Each contact point's last consistency solve, to start its next.
+    restarts: Vec<Option<Restart>>,
+    /// Each contact point's update of the step.
+    updates: Vec<Result<Update, FrictionError>>,
+    /// Degrees of freedom per parallel task: all of them on small bodies.
+    chunk: usize,
+    /// Contact points per parallel task.
+    point_chunk: usize,
+}
+
+impl CentralDifference {
+    pub(crate) fn new(body: &LinearBody, contact: &ContactBoundary, displacement: &[f64]) -> Self {
+        let mut contact_dofs: Vec<usize> = contact.points.iter().flat_map(|p| p.dofs).collect();
+        contact_dofs.sort_unstable();
+        contact_dofs.dedup();
+        let parallel = body.dofs() >= PARALLEL_FROM_DOFS;
+        let stiffness = TemplateMatrix::new(&body.stiffness);
+        let chunks = stiffness.as_ref().map_or_else(Vec::new, |s| s.chunks(if parallel { 8 } else { 1 }));
+        Self {
+            omega_max: highest_frequency(body, contact),
+            stiffness,
+            chunks,
+            stiffness_force: vec![0.0; body.dofs()],
+            swapped: vec![0.0; body.dofs()],
+            inverse_mass: body.mass.iter().map(|m| 1.0 / m).collect(),
+            contact_dofs,
+            contact_force: vec![0.0; body.dofs()],
+            contact_displacement: contact.points.iter().map(|p| p.interpolate(displacement)).collect(),
+            restarts: vec![None; contact.points.len()],
+            updates: vec![Err(FrictionError::NotConverged { residual: f64::NAN }); contact.points.len()],
+            // Even, so that each chunk holds whole nodes.
+            chunk: if parallel { 2 * body.dofs().div_ceil(16) } else { body.dofs().max(2) },
+            point_chunk: if parallel { 64 } else { contact.points.len().max(1) },
+        }
+    }
+
+    /// The largest sub-step taken (s).
+    pub(crate) fn stable_step(&self) -> f64 {
+        2.0 * STABILITY_SHARE / self.omega_max
+    }
+}
+
+/// The highest angular frequency `ω_max` (rad/s) of `M⁻¹ (K + K_t)`, `K_t = α_t Σ w Ñᵀ Ñ` the
+/// contact's elastic tangential springs: the square root of the largest eigenvalue of the
+/// symmetric `M^{-½} (K + K_t) M^{-½}`, by [`LANCZOS_STEPS`] steps of Lanczos' iteration (Golub
+/// & Van Loan, *Matrix Computations*, 4th ed., Alg. 10.1.1, without reorthogonalization, which
+/// leaves the extreme Ritz value intact). The largest Ritz value approaches the largest
+/// eigenvalue from below; `tests/central_difference.rs` compares it with a dense eigensolver.
+pub fn highest_frequency(body: &LinearBody, contact: &ContactBoundary) -> f64 {
+    let n = body.dofs();
+    let scale: Vec<f64> = body.mass.iter().map(|m| 1.0 / m.sqrt()).collect();
+    let alpha_t = contact.params.alpha_t;
+    let mut scaled = vec![0.0; n];
+    let apply = |x: &[f64], y: &mut [f64], scaled: &mut Vec<f64>| {
+        scaled.iter_mut().zip(x.iter().zip(&scale)).for_each(|(s, (x, c))| *s = x * c);
+        body.stiffness.mul_vec(scaled, y);
+        for point in &contact.points {
+            point.scatter(alpha_t * point.weight * point.interpolate(scaled), y);
+        }
+        y.iter_mut().zip(&scale).for_each(|(y, c)| *y *= c);
+    };
+    let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(a, b)| a * b).sum::<f64>();
+    // A start with a component along every mode: an irrational sequence of both signs.
+    let mut q: Vec<f64> = (0..n).map(|i| ((i as f64 + 1.0) * 0.618_033_988_749_894_9).fract() - 0.5).collect();
+    let norm = dot(&q, &q).sqrt();
+    q.iter_mut().for_each(|v| *v /= norm);
+    let mut previous = vec![0.0; n];
+    let mut w = vec![0.0; n];
+    let (mut alphas, mut betas) = (Vec::new(), Vec::new());
+    let mut beta = 0.0;
+    for _ in 0..LANCZOS_STEPS.min(n) {
+        apply(&q, &mut w, &mut scaled);
+        w.iter_mut().zip(&previous).for_each(|(w, p)| *w -= beta * p);
+        let alpha = dot(&w, &q);
+        w.iter_mut().zip(&q).for_each(|(w, q)| *w -= alpha * q);
+        alphas.push(alpha);
+        beta = dot(&w, &w).sqrt();
+        if beta <= 1e-14 * alpha.abs() {
+            break;
+        }
+        betas.push(beta);
+        std::mem::swap(&mut previous, &mut q);
+        q.iter_mut().zip(&w).for_each(|(q, w)| *q = w / beta);
+    }
+    let k = alphas.len();
+    let tridiagonal = nalgebra::DMatrix::from_fn(k, k, |i, j| match i.abs_diff(j) {
+        0 => alphas[i],
+        1 => betas[i.min(j)],
+        _ => 0.0,
+    });
+    let largest = tridiagonal.symmetric_eigenvalues().iter().copied().fold(0.0, f64::max);
+    largest.sqrt()
+}
+
+impl Dynamics {
+    /// Uses central differences from now on ([`super::central`]).
+    pub fn use_central_differences(&mut self) {
+        self.central = Some(CentralDifference::new(&self.body, &self.contact, &self.state.displacement));
+    }
+
+    /// The largest sub-step of central differences (s), if they are in use.
+    pub fn stable_step(&self) -> Option<f64> {
+        self.central.as_ref().map(CentralDifference::stable_step)
+    }
+
+    /// Advances by `dt` in the fewest equal sub-steps of at most [`CentralDifference::stable_step`],
+    /// reported as one step: `plastic_increment` holds the slip of all of them.
+    pub(super) fn central_step(&mut self, dt: f64) -> Result<(), StepError> {
+        let mut central = self.central.take().expect("central differences are in use");
+        let result = self.central_substeps(&mut central, dt);
+        self.central = Some(central);
+        result
+    }
+
+    fn central_substeps(&mut self, central: &mut CentralDifference, dt: f64) -> Result<(), StepError> {
+        let substeps = (dt / central.stable_step()).ceil().max(1.0) as u64;
+        let h = dt / substeps as f64;
+        let start = self.state.time;
+        self.state.plastic_increment.iter_mut().for_each(|p| *p = 0.0);
+        for i in 0..substeps {
+            self.central_substep(central, start + i as f64 * h, h)?;
+        }
+        if self.state.velocity.iter().chain(&self.state.displacement).any(|x| !x.is_finite()) {
+            return Err(StepError::NonFinite);
+        }
+        self.state.time = start + dt;
+        self.state.step += 1;
+        Ok(())
+    }
+
+    /// One sub-step of `h` from `time`.
+    fn central_substep(&mut self, central: &mut CentralDifference, time: f64, h: f64) -> Result<(), StepError> {
+        let s = &mut self.state;
+        let chunk = central.chunk;
+        s.displacement
+            .par_chunks_mut(chunk)
+            .zip(s.velocity.par_chunks_mut(chunk))
+            .zip(s.acceleration.par_chunks(chunk))
+            .zip(central.swapped.par_chunks_mut(chunk))
+            .for_each(|(((displacement, velocity), acceleration), swapped)| {
+                for ((u, v), a) in displacement.iter_mut().zip(velocity.iter_mut()).zip(acceleration) {
+                    *v += 0.5 * h * a;
+                    *u += h * *v;
+                }
+                if swapped.len() == displacement.len() {
+                    TemplateMatrix::swap_pairs(displacement, swapped);
+                }
+            });
+        let base = self.contact.base_displacement_at(time + h) - self.contact.base_displacement_at(time);
+        let (params, points, displacement) = (&self.contact.params, &self.contact.points, &s.displacement);
+        central
+            .updates
+            .par_iter_mut()
+            .zip(s.contact.par_iter())
+            .zip(central.restarts.par_iter())
+            .zip(central.contact_displacement.par_iter())
+            .enumerate()
+            .with_min_len(central.point_chunk)
+            .for_each(|(k, (((update, state), &restart), &previous))| {
+                let slip = points[k].interpolate(displacement) - previous - base;
+                *update = update_in_halves(params, state, slip, h, restart, 0);
+            });
+        for &dof in &central.contact_dofs {
+            central.contact_force[dof] = -self.initial_contact_force[dof];
+        }
+        for (k, point) in points.iter().enumerate() {
+            let updated = match &central.updates[k] {
+                Ok(updated) => *updated,
+                Err(error) => return Err(StepError::Friction { point: k, state: s.contact[k], error: error.clone() }),
+            };
+            central.contact_displacement[k] = point.interpolate(&s.displacement);
+            s.contact[k] = updated.state;
+            s.plastic_increment[k] += updated.plastic_increment;
+            central.restarts[k] = updated.restart;
+            point.scatter(point.weight * updated.state.traction_t, &mut central.contact_force);
+        }
+        // a = M⁻¹ (f⁰ - K u + f_c - f_c(0)), by chunks of nodes: K u of the chunk, then the rest.
+        let t = time + h;
+        let (body, displacement) = (&self.body, &s.displacement);
+        let mut stiffness_buffer = std::mem::take(&mut central.stiffness_force);
+        let mut tasks = Vec::with_capacity(central.chunks.len());
+        let (mut acceleration, mut velocity, mut stiffness_force) =
+            (&mut s.acceleration[..], &mut s.velocity[..], &mut stiffness_buffer[..]);
+        let mut first = 0;
+        for &(begin, end, nodes) in &central.chunks {
+            let rows = 2 * nodes;
+            let (a, a_rest) = std::mem::take(&mut acceleration).split_at_mut(rows);
+            let (v, v_rest) = std::mem::take(&mut velocity).split_at_mut(rows);
+            let (k, k_rest) = std::mem::take(&mut stiffness_force).split_at_mut(rows);
+            tasks.push((first, (begin, end), a, v, k));
+            (acceleration, velocity, stiffness_force) = (a_rest, v_rest, k_rest);
+            first += rows;
+        }
+        let shared = &*central;
+        let kick = |first: usize, acceleration: &mut [f64], velocity: &mut [f64], stiffness_force: &[f64]| {
+            for (i, ((a, v), ku)) in acceleration.iter_mut().zip(velocity.iter_mut()).zip(stiffness_force).enumerate() {
+                let r = first + i;
+                *a = (t * body.load_rate[r] + shared.contact_force[r] - ku) * shared.inverse_mass[r];
+                *v += 0.5 * h * *a;
+            }
+        };
+        match &shared.stiffness {
+            Some(stiffness) => tasks.into_par_iter().for_each(|(first, runs, a, v, k)| {
+                stiffness.mul_chunk(runs, displacement, &shared.swapped, k);
+                kick(first, a, v, k);
+            }),
+            None => {
+                body.stiffness.mul_vec(displacement, stiffness_force);
+                kick(0, acceleration, velocity, stiffness_force);
+            }
+        }
+        central.stiffness_force = stiffness_buffer;
+        Ok(())
+    }
+}
+
+/// Degrees of freedom from which a step's loops are shared among threads (`rayon`): below
+/// this, handing out the work costs more than it saves.
+const PARALLEL_FROM_DOFS: usize = 20_000;
+
+/// The friction update of one point over `h`, repeated as two halves of the slip over `h/2`
+/// where shorter steps cure its failure (see the module documentation).
+fn update_in_halves(
+    params: &FrictionParams,
+    state: &ContactState,
+    slip: f64,
+    h: f64,
+    restart: Option<Restart>,
+    depth: u32,
+) -> Result<Update, FrictionError> {
+    match update_from(params, state, slip, h, restart) {
+        Err(FrictionError::StructureOutOfRange { .. } | FrictionError::NotConverged { .. }) if depth < MAX_HALVINGS => {
+            let first = update_in_halves(params, state, 0.5 * slip, 0.5 * h, None, depth + 1)?;
+            let second = update_in_halves(params, &first.state, 0.5 * slip, 0.5 * h, first.restart, depth + 1)?;
+            Ok(Update { plastic_increment: first.plastic_increment + second.plastic_increment, ..second })
+        }
+        result => result,
+    }
+}
