@@ -295,7 +295,7 @@ fn update_in_halves(
     depth: u32,
 ) -> Result<Update, FrictionError> {
     match update_from(params, state, slip, h, restart) {
-        Err(FrictionError::StructureOutOfRange { .. } | FrictionError::NotConverged { .. }) if depth < MAX_HALVINGS => {
+        Err(error) if depth < MAX_HALVINGS && error.cured_by_shorter_steps() => {
             let first = update_in_halves(params, state, 0.5 * slip, 0.5 * h, None, depth + 1)?;
             let second = update_in_halves(params, &first.state, 0.5 * slip, 0.5 * h, first.restart, depth + 1)?;
             Ok(Update { plastic_increment: first.plastic_increment + second.plastic_increment, ..second })

@@ -171,15 +171,11 @@ pub const MAX_HALVINGS: u32 = 10;
 impl StepError {
     /// Whether a shorter step may succeed where this one failed.
     pub(crate) fn cured_by_shorter_steps(&self) -> bool {
-        matches!(
-            self,
-            StepError::NotConverged { .. }
-                | StepError::Factor(FactorError::NotPositiveDefinite)
-                | StepError::Friction {
-                    error: FrictionError::StructureOutOfRange { .. } | FrictionError::NotConverged { .. },
-                    ..
-                }
-        )
+        match self {
+            StepError::NotConverged { .. } | StepError::Factor(FactorError::NotPositiveDefinite) => true,
+            StepError::Friction { error, .. } => error.cured_by_shorter_steps(),
+            _ => false,
+        }
     }
 }
 

@@ -115,6 +115,14 @@ impl fmt::Display for FrictionError {
 
 impl std::error::Error for FrictionError {}
 
+impl FrictionError {
+    /// Whether the same slip over a shorter step may succeed: `1/R*` leaving its range in the
+    /// trapezoidal rule of eq. (4), or the consistency solve not converging.
+    pub fn cured_by_shorter_steps(&self) -> bool {
+        matches!(self, FrictionError::StructureOutOfRange { .. } | FrictionError::NotConverged { .. })
+    }
+}
+
 /// Advances one contact point by the relative tangential displacement `slip_increment` (m) over
 /// `dt` (s). See the module documentation for the scheme.
 pub fn update(
