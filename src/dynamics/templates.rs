@@ -129,7 +129,7 @@ impl TemplateMatrix {
     /// `y = A x` for the nodes `first..first + y.len()/2`, given `swapped`, `x` with each node's
     /// two values exchanged; `runs` must cover those nodes. Compiled for the widest vectors the
     /// processor has (`pulp`'s runtime dispatch, as `faer` does).
-    fn mul_nodes(&self, runs: &[Run], x: &[f64], swapped: &[f64], y: &mut [f64], first: usize) {
+    fn mul_nodes(runs: &[Run], x: &[f64], swapped: &[f64], y: &mut [f64], first: usize) {
         pulp::Arch::new().dispatch(MulNodes { runs, x, swapped, y, first });
     }
 
@@ -156,7 +156,7 @@ impl TemplateMatrix {
     pub fn mul_chunk(&self, (begin, end): (usize, usize), x: &[f64], swapped: &[f64], y: &mut [f64]) {
         let runs = &self.runs[begin..end];
         let first = runs.first().map_or(0, |r| r.first);
-        self.mul_nodes(runs, x, swapped, y, first);
+        Self::mul_nodes(runs, x, swapped, y, first);
     }
 
     /// `x` with each node's two values exchanged.
@@ -171,7 +171,7 @@ impl TemplateMatrix {
     pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
         let mut swapped = vec![0.0; x.len()];
         Self::swap_pairs(x, &mut swapped);
-        self.mul_nodes(&self.runs, x, &swapped, y, 0);
+        Self::mul_nodes(&self.runs, x, &swapped, y, 0);
     }
 }
 
