@@ -1,6 +1,6 @@
 //! Work-precision benchmark (issue 6): error against wall time for the spring-block and the
 //! paper case, across step sizes (fixed Wilson-θ) and tolerances (adaptive Wilson-θ by step
-//! doubling, and Tsitouras' 5(4) pair on the rate form).
+//! doubling, Tsitouras' explicit 5(4) pair and the L-stable SDIRK 4(3) on the rate form).
 //!
 //! `cargo bench --bench work_precision` writes `recordings/bench/work_precision.md` (the table)
 //! and `recordings/bench/work_precision.png` (the plot). `-- --quick` skips the finest
@@ -59,6 +59,8 @@ struct Measured {
     wall: f64,
     steps: u64,
     rejected: u64,
+    /// SDIRK's Newton iterations and factorizations.
+    newton: (u64, u64),
     /// Onsets of each segment's events, in order.
     onsets: BTreeMap<usize, Vec<f64>>,
     trace: ForceTrace,
@@ -78,8 +80,10 @@ fn measure_once(case: &Case) -> Result<Measured, String> {
         run(scene.as_mut(), &case.time, &mut sinks, LoopOptions::for_case(case))
     };
     let wall = started.elapsed().as_secs_f64();
-    let (steps, rejected, catalog) = match outcome {
-        Outcome::Completed { steps, rejected, catalog, .. } => (steps, rejected, catalog),
+    let (steps, rejected, newton, catalog) = match outcome {
+        Outcome::Completed { steps, rejected, newton_iterations, factorizations, catalog, .. } => {
+            (steps, rejected, (newton_iterations, factorizations), catalog)
+        }
         Outcome::Failed { error, .. } => return Err(format!("stopped at t = {:.1} s: {}", error.time, error.message)),
         other => return Err(format!("{other:?}")),
     };
@@ -87,7 +91,7 @@ fn measure_once(case: &Case) -> Result<Measured, String> {
     for e in &catalog.events {
         onsets.entry(e.segment).or_default().push(e.onset);
     }
-    Ok(Measured { wall, steps, rejected, onsets, trace })
+    Ok(Measured { wall, steps, rejected, newton, onsets, trace })
 }
 
 /// Runs `repeats` times and keeps the last run with the median wall time.
@@ -173,6 +177,7 @@ struct Benchmark {
     fixed: &'static [f64],
     tolerances: &'static [f64],
     tsit5: &'static [f64],
+    sdirk4: &'static [f64],
     /// Tsitouras' pair's tolerance for the reference.
     reference_tolerance: f64,
     /// Wilson-θ's step for the independent check of the reference.
@@ -200,6 +205,7 @@ fn main() {
             fixed: &[0.05, 0.02, 0.01, 0.005, 0.002, 0.001],
             tolerances: &[1e-4, 1e-5, 1e-6, 1e-7],
             tsit5: &[1e-6, 1e-8, 1e-10, 1e-12],
+            sdirk4: &[1e-6, 1e-7, 1e-8, 1e-9],
             reference_tolerance: 1e-13,
             check_dt: if quick { 2e-4 } else { 5e-5 },
         },
@@ -212,6 +218,7 @@ fn main() {
             fixed: &[0.1, 0.05, 0.02, 0.01, 0.005, 0.002, 0.001],
             tolerances: &[1e-5, 1e-6, 1e-7],
             tsit5: &[1e-5, 1e-6, 1e-7, 1e-8, 1e-10],
+            sdirk4: &[1e-6, 5e-7, 3e-7, 2e-7, 1e-7, 1e-8],
             reference_tolerance: 1e-12,
             check_dt: if quick { 2e-3 } else { 5e-4 },
         },
@@ -223,7 +230,8 @@ fn main() {
          of the solver and event catalog, without output files. `work` counts integrator steps solved for \
          Wilson-θ (one per fixed step, three per adaptive attempt: one whole step and two halves) and \
          right-hand sides for Tsitouras' pair (six per attempt, besides the steps that locate slip-rate \
-         crossings).\n",
+         crossings), and Newton iterations (one right-hand side and one solve each, with the steps that locate \
+         crossings) and factorizations for SDIRK4 (five stages per attempt).\n",
     );
     let mut panels = Vec::new();
     for b in &benchmarks {
@@ -233,6 +241,7 @@ fn main() {
             load(b.name, &o)
         };
         let tsit5 = |tolerance: f64| with(&["time.integrator=tsit5".into(), format!("time.tolerance={tolerance:e}")]);
+        let sdirk4 = |tolerance: f64| with(&["time.integrator=sdirk4".into(), format!("time.tolerance={tolerance:e}")]);
         eprintln!("{}: reference by tsit5 at tolerance {:e}", b.name, b.reference_tolerance);
         let reference = measure(&tsit5(b.reference_tolerance), 1).expect("the reference completes");
         let looser = measure(&tsit5(10.0 * b.reference_tolerance), 1).expect("the check completes");
@@ -271,6 +280,17 @@ fn main() {
                 m,
             });
         }
+        for &tol in b.sdirk4 {
+            eprintln!("{}: sdirk4 tolerance = {tol}", b.name);
+            let m = measure(&sdirk4(tol), repeats);
+            rows.push(Row {
+                integrator: "SDIRK4",
+                setting: format!("tolerance = {tol:e}"),
+                onset: 0.0,
+                traction: 0.0,
+                m,
+            });
+        }
         for row in &mut rows {
             if let Ok(m) = &row.m {
                 row.onset = onset_error(m, &reference, b.horizon);
@@ -299,6 +319,7 @@ fn main() {
                     let work = match row.integrator {
                         "Tsit5" => format!("{} rhs", 6 * (m.steps + m.rejected)),
                         "Wilson-θ adaptive" => format!("{} solves", 3 * (m.steps + m.rejected)),
+                        "SDIRK4" => format!("{} Newton, {} factorizations", m.newton.0, m.newton.1),
                         _ => format!("{} solves", m.steps),
                     };
                     format!(
@@ -310,9 +331,10 @@ fn main() {
             };
             report.push_str(&line);
         }
-        report.push_str(&equal_onset_error(&rows));
+        report.push_str(&equal_onset_error(&rows, "Tsit5"));
+        report.push_str(&equal_onset_error(&rows, "SDIRK4"));
         for (metric, pick) in [("onset", 0), ("traction", 1)] {
-            let curves = ["Wilson-θ fixed", "Wilson-θ adaptive", "Tsit5"]
+            let curves = ["Wilson-θ fixed", "Wilson-θ adaptive", "Tsit5", "SDIRK4"]
                 .iter()
                 .map(|name| WorkPrecisionCurve {
                     label: name.to_string(),
@@ -336,21 +358,22 @@ fn main() {
     println!("wrote {} and work_precision.png", out.join("work_precision.md").display());
 }
 
-/// For each fixed Wilson-θ row with the reference's events, the Tsit5 row with the fewest steps
-/// at an onset error at most as large: the ratios of steps and of wall time.
-fn equal_onset_error(rows: &[Row]) -> String {
-    let mut text = String::from("\nAt equal or smaller onset error, Tsit5 against fixed Wilson-θ:\n\n");
+/// For each fixed Wilson-θ row with the reference's events, the row of `method` with the
+/// fewest steps at an onset error at most as large: the ratios of steps, of attempts (steps and
+/// rejections) and of wall time.
+fn equal_onset_error(rows: &[Row], method: &str) -> String {
+    let mut text = format!("\nAt equal or smaller onset error, {method} against fixed Wilson-θ:\n\n");
     for fixed in rows.iter().filter(|r| r.integrator == "Wilson-θ fixed" && r.onset.is_finite()) {
         let Ok(f) = &fixed.m else { continue };
         let best = rows
             .iter()
-            .filter(|r| r.integrator == "Tsit5" && r.onset <= fixed.onset)
+            .filter(|r| r.integrator == method && r.onset <= fixed.onset)
             .filter_map(|r| r.m.as_ref().ok().map(|m| (r, m)))
             .min_by_key(|(_, m)| m.steps);
         text.push_str(&match best {
             Some((r, m)) => format!(
-                "- Wilson-θ {} (onset error {:.1e}, {} steps, {:.3} s): Tsit5 {} ({:.1e}) takes {} steps, {:.1}× fewer, \
-                 in {:.3} s, {:.1}× less time\n",
+                "- Wilson-θ {} (onset error {:.1e}, {} steps, {:.3} s): {method} {} ({:.1e}) takes {} steps and {} \
+                 rejected, {:.1}× fewer steps and {:.1}× fewer attempts, in {:.3} s, {:.1}× less time\n",
                 fixed.setting,
                 fixed.onset,
                 f.steps,
@@ -358,11 +381,18 @@ fn equal_onset_error(rows: &[Row]) -> String {
                 r.setting,
                 r.onset,
                 m.steps,
+                m.rejected,
                 f.steps as f64 / m.steps as f64,
+                f.steps as f64 / (m.steps + m.rejected) as f64,
                 m.wall,
                 f.wall / m.wall
             ),
-            None => format!("- Wilson-θ {} (onset error {:.1e}): no Tsit5 row is as accurate\n", fixed.setting, fixed.onset),
+            None => {
+                format!(
+                    "- Wilson-θ {} (onset error {:.1e}): no {method} row is as accurate\n",
+                    fixed.setting, fixed.onset
+                )
+            }
         });
     }
     text

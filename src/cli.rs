@@ -123,7 +123,9 @@ pub struct RunArgs {
     pub case: PathBuf,
     /// Override a case key, e.g. --set time.t_end=50, --set friction.rstar_law=eq4, or
     /// --set time.integrator=tsit5 (Tsitouras' adaptive 5(4) pair instead of Wilson's θ method,
-    /// tolerance 1e-8 per step unless time.tolerance says otherwise) or
+    /// tolerance 1e-8 per step unless time.tolerance says otherwise),
+    /// --set time.integrator=sdirk4 (an adaptive L-stable implicit Runge–Kutta 4(3): long steps
+    /// through stick, tolerance 1e-7 per step unless time.tolerance says otherwise) or
     /// --set time.integrator=central (explicit central differences, sub-stepped to their
     /// stability limit: the fastest on fine meshes). Repeatable; checked by the same rules as
     /// the file.
@@ -235,7 +237,7 @@ fn run_command(args: RunArgs) -> ExitCode {
     }
     let written = outputs.join(", ");
     match outcome {
-        Outcome::Completed { steps, rejected, wall, catalog } => {
+        Outcome::Completed { steps, rejected, wall, catalog, .. } => {
             if !args.quiet {
                 let rejected = if case.time.adaptive_tolerance().is_some() {
                     format!(" (adaptive, {rejected} rejected)")

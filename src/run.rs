@@ -15,8 +15,16 @@ use crate::sink::{Ending, Sink, SinkError};
 /// How a run ended. Every variant but `Sink` comes with the catalog up to the last good step.
 #[derive(Debug)]
 pub enum Outcome {
-    /// All steps done: `steps` taken, and with adaptive stepping `rejected` attempts besides.
-    Completed { steps: u64, rejected: u64, wall: Duration, catalog: Catalog },
+    /// All steps done: `steps` taken, and with adaptive stepping `rejected` attempts besides;
+    /// an implicit Runge–Kutta method's Newton iterations and factorizations (0 otherwise).
+    Completed {
+        steps: u64,
+        rejected: u64,
+        newton_iterations: u64,
+        factorizations: u64,
+        wall: Duration,
+        catalog: Catalog,
+    },
     /// Stopped at a signal after `steps` steps; the sinks were finished.
     Interrupted { steps: u64, catalog: Catalog },
     /// A step failed; the sinks were finished with everything up to the last good step.
@@ -179,10 +187,13 @@ pub fn run(
         }
     }
     let steps = k;
-    let rejected = control.as_ref().map_or(0, |c| c.rejected);
+    let counts = control.as_ref().map_or((0, 0, 0), |c| (c.rejected, c.newton_iterations, c.factorizations));
+    let (rejected, newton_iterations, factorizations) = counts;
     bar.finish_and_clear();
     match observers.finish(Ending::Completed) {
-        Ok(catalog) => Outcome::Completed { steps, rejected, wall: start.elapsed(), catalog },
+        Ok(catalog) => {
+            Outcome::Completed { steps, rejected, newton_iterations, factorizations, wall: start.elapsed(), catalog }
+        }
         Err(e) => Outcome::Sink(e),
     }
 }

@@ -3,20 +3,13 @@
 //! against Tsitouras' 5(4) pair at a tight tolerance, a different method on a different form of
 //! the equations (the rate form).
 
+mod common;
+
+use common::{load, max_difference, tractions};
 use nalgebra::{DMatrix, SymmetricEigen};
-use slipfront::case::{self, Case, SceneSpec};
-use slipfront::dynamics::StepControl;
 use slipfront::dynamics::central::highest_frequency;
 use slipfront::fem::{Block, PlaneStrain, StructuredMesh, assemble};
 use slipfront::friction::FrictionParams;
-use slipfront::scene::Scene;
-use slipfront::scene::block::BlockScene;
-
-fn load(name: &str, overrides: &[&str]) -> Case {
-    let path = format!("{}/cases/{name}.toml", env!("CARGO_MANIFEST_DIR"));
-    let owned: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    case::load(std::path::Path::new(&path), &owned).unwrap()
-}
 
 #[test]
 fn lanczos_finds_the_highest_frequency_of_a_dense_eigensolver() {
@@ -47,38 +40,6 @@ fn lanczos_finds_the_highest_frequency_of_a_dense_eigensolver() {
     let relative = (lanczos - exact).abs() / exact;
     println!("ω_max: Lanczos {lanczos} rad/s, dense {exact} rad/s, relative {relative:e}");
     assert!(relative < 1e-6, "Lanczos {lanczos} against {exact}");
-}
-
-/// Mean tangential traction of each segment at `t = every, 2 every, …, t_end`, stepping the
-/// scene to land on each instant.
-fn tractions(case: &Case, every: f64) -> Vec<Vec<f64>> {
-    let SceneSpec::Block(spec) = &case.scene else { panic!("a block case") };
-    let mut block = BlockScene::new(case, spec).unwrap();
-    let mut control = case
-        .time
-        .adaptive_tolerance()
-        .map(|tolerance| StepControl::new(tolerance, case.time.dt, case.time.dt_max(), case.time.dt_min()));
-    let samples = (case.time.t_end / every).round() as usize;
-    let mut out = Vec::new();
-    for k in 1..=samples {
-        let target = k as f64 * every;
-        while block.time() < target - 1e-9 {
-            let left = target - block.time();
-            match control.as_mut() {
-                Some(control) => {
-                    block.advance_adaptive(control, left).unwrap();
-                }
-                None => block.advance(case.time.dt.min(left)).unwrap(),
-            }
-        }
-        let frame = block.frame(Default::default(), 0.0);
-        out.push(frame.segments.iter().map(|s| s.traction_t).collect());
-    }
-    out
-}
-
-fn max_difference(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
-    a.iter().flatten().zip(b.iter().flatten()).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
 }
 
 #[test]

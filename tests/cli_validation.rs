@@ -105,7 +105,7 @@ fn time_rules() {
     expect_invalid(
         &c,
         &["time.integrator=rk4"],
-        "time.integrator: unknown variant `rk4`, expected one of `wilson`, `tsit5`, `central`",
+        "time.integrator: unknown variant `rk4`, expected one of `wilson`, `tsit5`, `sdirk4`, `central`",
     );
     expect_invalid(
         &c,
@@ -122,6 +122,16 @@ fn time_rules() {
         &case("point_loading.toml"),
         &["time.integrator=tsit5"],
         "time.integrator = tsit5 is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
+    );
+    expect_invalid(
+        &case("point_loading.toml"),
+        &["time.integrator=sdirk4"],
+        "time.integrator = sdirk4 is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
+    );
+    expect_invalid(
+        &c,
+        &["time.integrator=sdirk4", "time.tolerance=0.5"],
+        "time.tolerance = 0.5 must lie in (0, 0.1] (a relative local error per step of sdirk4)",
     );
     expect_invalid(
         &c,

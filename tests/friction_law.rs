@@ -259,3 +259,53 @@ fn reversing_the_drive_mirrors_the_point_scene_exactly() {
     assert_eq!(a.structure, b.structure);
     assert_eq!(a.plastic_slip, b.plastic_slip);
 }
+
+#[test]
+fn rate_form_partials_match_finite_differences() {
+    // The partial derivatives the implicit Runge–Kutta stages linearize with: ∂ḟ_t/∂(f_t, 1/R*,
+    // v̄_t) and ∂Λ/∂(f_t, 1/R*, v̄_t) of `tangential_rate`, and ∂/∂(1/R*) of eq. (4)'s rate,
+    // against central differences of the rates themselves, at loading states from well inside
+    // the subloading surface to near it, in both directions, with both r* laws.
+    for rstar_law in [RStarLaw::Consistent, RStarLaw::Eq4] {
+        let params = FrictionParams { rstar_law, ..paper() };
+        for (ratio, structure, v) in [(0.3, 1.2, -2e-3), (0.9, 1.9, -1e-3), (0.99, 1.5, -5e-4)] {
+            for direction in [1.0, -1.0] {
+                let f_n = 800.0;
+                let state = ContactState {
+                    traction_t: direction * ratio * params.mu_k * f_n * structure,
+                    traction_n: f_n,
+                    structure,
+                    plastic_slip: 0.0,
+                };
+                let v = direction * v;
+                let at = |f: f64, z: f64, v: f64| {
+                    law::tangential_rate(&params, &ContactState { traction_t: f, structure: z, ..state }, v)
+                };
+                let r = at(state.traction_t, structure, v);
+                assert!(r.plastic_multiplier > 0.0, "a loading state: {r:?}");
+                let lambda = r.plastic_multiplier_partials(&params, &state);
+                let (hf, hz, hv) = (1e-6 * state.traction_t.abs(), 1e-7, 1e-7 * v.abs());
+                let f = state.traction_t;
+                let numeric = [
+                    (at(f + hf, structure, v), at(f - hf, structure, v), hf),
+                    (at(f, structure + hz, v), at(f, structure - hz, v), hz),
+                    (at(f, structure, v + hv), at(f, structure, v - hv), hv),
+                ];
+                let analytic_rate = [r.d_traction, r.d_structure, r.d_velocity];
+                for (k, (plus, minus, h)) in numeric.iter().enumerate() {
+                    let d_rate = (plus.rate - minus.rate) / (2.0 * h);
+                    let d_lambda = (plus.plastic_multiplier - minus.plastic_multiplier) / (2.0 * h);
+                    let close = |a: f64, b: f64| (a - b).abs() <= 1e-5 * a.abs().max(b.abs()) + 1e-9;
+                    assert!(close(analytic_rate[k], d_rate), "ḟ_t partial {k}: {} vs {d_rate}", analytic_rate[k]);
+                    assert!(close(lambda[k], d_lambda), "Λ partial {k}: {} vs {d_lambda}", lambda[k]);
+                }
+                let lam = r.plastic_multiplier;
+                let slope = law::structure_rate_slope(&params, structure, lam);
+                let numeric = (law::structure_rate(&params, structure + hz, lam)
+                    - law::structure_rate(&params, structure - hz, lam))
+                    / (2.0 * hz);
+                assert!((slope - numeric).abs() <= 1e-6 * slope.abs().max(1e-6), "eq. (4) slope {slope} vs {numeric}");
+            }
+        }
+    }
+}

@@ -108,7 +108,7 @@ impl Case {
                 "is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
             );
         }
-        if let (integrator @ (Integrator::Tsit5 | Integrator::Central), SceneSpec::Point(_)) =
+        if let (integrator @ (Integrator::Tsit5 | Integrator::Sdirk4 | Integrator::Central), SceneSpec::Point(_)) =
             (self.time.integrator, &self.scene)
         {
             time.fail(

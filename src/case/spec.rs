@@ -71,6 +71,10 @@ pub enum Integrator {
     /// instants where a contact point's slip rate crosses the event threshold located
     /// ([`crate::dynamics::runge_kutta`]). `tolerance` is its local error per step.
     Tsit5,
+    /// Hairer and Wanner's L-stable SDIRK 4(3) on the same rate equations, always adaptive,
+    /// crossings located as for `Tsit5` ([`crate::dynamics::sdirk`]). `tolerance` is its local
+    /// error per step.
+    Sdirk4,
     /// Explicit central differences for the body with the implicit friction update of each
     /// step ([`crate::dynamics::central`]): frames every `dt`, each taken in the fewest equal
     /// sub-steps the stability limit allows. No `tolerance`.
@@ -83,6 +87,7 @@ impl Integrator {
         match self {
             Integrator::Wilson => "wilson",
             Integrator::Tsit5 => "tsit5",
+            Integrator::Sdirk4 => "sdirk4",
             Integrator::Central => "central",
         }
     }
@@ -90,6 +95,9 @@ impl Integrator {
 
 /// Local error per step of `tsit5` when `time.tolerance` is not given.
 pub const TSIT5_DEFAULT_TOLERANCE: f64 = 1e-8;
+
+/// Local error per step of `sdirk4` when `time.tolerance` is not given.
+pub const SDIRK4_DEFAULT_TOLERANCE: f64 = 1e-7;
 
 fn default_theta() -> f64 {
     1.4
@@ -119,8 +127,10 @@ impl TimeSpec {
             && !(tolerance > 0.0 && tolerance <= 0.1)
         {
             let meaning = match self.integrator {
-                Integrator::Wilson | Integrator::Central => "a relative local error per second, 1/s",
-                Integrator::Tsit5 => "a relative local error per step of tsit5",
+                Integrator::Wilson | Integrator::Central => "a relative local error per second, 1/s".to_string(),
+                Integrator::Tsit5 | Integrator::Sdirk4 => {
+                    format!("a relative local error per step of {}", self.integrator.name())
+                }
             };
             c.fail("tolerance", tolerance, format!("must lie in (0, 0.1] ({meaning})"));
         }
@@ -166,6 +176,7 @@ impl TimeSpec {
         match self.integrator {
             Integrator::Wilson => self.tolerance,
             Integrator::Tsit5 => Some(self.tolerance.unwrap_or(TSIT5_DEFAULT_TOLERANCE)),
+            Integrator::Sdirk4 => Some(self.tolerance.unwrap_or(SDIRK4_DEFAULT_TOLERANCE)),
             Integrator::Central => None,
         }
     }
@@ -180,7 +191,7 @@ impl TimeSpec {
     /// Whether the integrator reports each point's plastic slip rate `Λ` at the end of a step
     /// (Tsitouras' pair) rather than the step's mean `Δp/Δt` (Wilson's method).
     pub fn instantaneous_slip_rate(&self) -> bool {
-        self.integrator == Integrator::Tsit5
+        matches!(self.integrator, Integrator::Tsit5 | Integrator::Sdirk4)
     }
 
     /// Whether every step is one of Wilson's method of `dt`: the only stepping for which a
@@ -201,7 +212,7 @@ impl TimeSpec {
     pub fn dt_min(&self) -> f64 {
         match self.integrator {
             Integrator::Wilson | Integrator::Central => self.t_end / MAX_STEPS,
-            Integrator::Tsit5 => 4.0 * f64::EPSILON * self.t_end,
+            Integrator::Tsit5 | Integrator::Sdirk4 => 4.0 * f64::EPSILON * self.t_end,
         }
     }
 

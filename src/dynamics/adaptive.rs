@@ -37,12 +37,26 @@ pub struct StepControl {
     pub accepted: u64,
     /// Attempts rejected by the error estimate or by a failed solve.
     pub rejected: u64,
+    /// Newton iterations of an implicit Runge–Kutta method's stages ([`super::sdirk`]): one
+    /// right-hand side and one solve with the factored operator each.
+    pub newton_iterations: u64,
+    /// Factorizations of its operator (linearizations).
+    pub factorizations: u64,
 }
 
 impl StepControl {
     /// Starts with a step of `dt`.
     pub fn new(tolerance: f64, dt: f64, dt_max: f64, dt_min: f64) -> Self {
-        Self { tolerance, dt_max, dt_min, next: dt.min(dt_max), accepted: 0, rejected: 0 }
+        Self {
+            tolerance,
+            dt_max,
+            dt_min,
+            next: dt.min(dt_max),
+            accepted: 0,
+            rejected: 0,
+            newton_iterations: 0,
+            factorizations: 0,
+        }
     }
 
     /// Integrator steps solved so far: three per attempt (one whole, two halves).

@@ -7,6 +7,7 @@ pub mod condensed;
 pub mod contact;
 mod newton;
 pub mod runge_kutta;
+pub mod sdirk;
 pub mod sparse;
 pub mod templates;
 pub mod wilson;

@@ -36,8 +36,18 @@
 //! steps from the step's start), so that a frame lies on every onset and every end.
 
 use super::adaptive::{AdaptiveError, ErrorScaling, StepControl};
+use super::sdirk::Sdirk4;
 use super::wilson::{Dynamics, StepError};
 use crate::friction::{ContactState, law};
+
+/// The Runge–Kutta method that integrates the rate form.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Tsitouras' explicit 5(4) pair (this module).
+    Tsit5,
+    /// Hairer and Wanner's L-stable SDIRK 4(3) ([`super::sdirk`]).
+    Sdirk4,
+}
 
 /// Nodes `c_2 … c_7` (Tsitouras 2011, Table 1).
 const C: [f64; 6] = [0.161, 0.327, 0.9, 0.980_025_540_904_509_7, 1.0, 1.0];
@@ -85,6 +95,13 @@ fn fifth_root(x: f64) -> f64 {
     x.powf(0.2)
 }
 
+/// SDIRK's embedded estimate is that of its third-order solution: per step, falling as `h⁴`.
+const FOURTH_ORDER: ErrorScaling = ErrorScaling { per_unit_step: false, root: fourth_root, max_growth: 5.0 };
+
+fn fourth_root(x: f64) -> f64 {
+    x.sqrt().sqrt()
+}
+
 /// Root-finding steps allowed when locating a crossing.
 const MAX_LOCATING_STEPS: usize = 60;
 
@@ -100,7 +117,30 @@ pub struct RungeKutta {
     lambda: Vec<f64>,
     /// Physical scale of each component, added to its size in the error measure.
     scale: Vec<f64>,
-    pair: Tsit5,
+    pair: Pair,
+}
+
+/// A method with its workspace.
+#[derive(Debug, Clone)]
+enum Pair {
+    Tsit5(Tsit5),
+    Sdirk4(Box<Sdirk4>),
+}
+
+impl Pair {
+    fn method(&self) -> Method {
+        match self {
+            Pair::Tsit5(_) => Method::Tsit5,
+            Pair::Sdirk4(_) => Method::Sdirk4,
+        }
+    }
+
+    fn scaling(&self) -> ErrorScaling {
+        match self {
+            Pair::Tsit5(_) => FIFTH_ORDER,
+            Pair::Sdirk4(_) => FOURTH_ORDER,
+        }
+    }
 }
 
 /// Tsitouras' 5(4) pair on `ẏ = f(t, y)`: its stages and one step.
@@ -166,30 +206,37 @@ impl Tsit5 {
     }
 }
 
-/// One trial step: the fifth-order state, its rate and `Λ` (the last stage), and the error.
+/// One trial step: the new state, its rate and `Λ` there, and the error (infinite if the step
+/// failed, with the reason where an implicit method's solve gave one).
 struct Trial {
     y: Vec<f64>,
     rate: Vec<f64>,
     lambda: Vec<f64>,
     error: f64,
+    failure: Option<StepError>,
 }
 
 impl Dynamics {
-    /// Takes one step of at most `limit` (s) with Tsitouras' pair (module docs), its size chosen
-    /// by `control` (`control.tolerance` is the error allowed per step), shortened to end just
-    /// past the first instant where a contact point's plastic slip rate crosses `threshold`
-    /// (m/s). Returns the step taken.
+    /// Takes one step of at most `limit` (s) with `method` (Tsitouras' pair, module docs, or
+    /// SDIRK, [`super::sdirk`]), its size chosen by `control` (`control.tolerance` is the error
+    /// allowed per step), shortened to end just past the first instant where a contact point's
+    /// plastic slip rate crosses `threshold` (m/s). Returns the step taken.
     pub fn runge_kutta_step(
         &mut self,
+        method: Method,
         control: &mut StepControl,
         limit: f64,
         threshold: f64,
     ) -> Result<f64, AdaptiveError> {
         let mut rk = match self.runge_kutta.take() {
-            Some(rk) if rk.at == (self.state.step, self.state.time) => rk,
-            _ => RungeKutta::new(self),
+            Some(rk) if rk.at == (self.state.step, self.state.time) && rk.pair.method() == method => rk,
+            _ => RungeKutta::new(self, method),
         };
         let result = self.runge_kutta_attempts(&mut rk, control, limit, threshold);
+        if let Pair::Sdirk4(pair) = &mut rk.pair {
+            control.newton_iterations += std::mem::take(&mut pair.iterations);
+            control.factorizations += std::mem::take(&mut pair.linearizations);
+        }
         self.runge_kutta = Some(rk);
         result
     }
@@ -202,28 +249,32 @@ impl Dynamics {
         threshold: f64,
     ) -> Result<f64, AdaptiveError> {
         let t = self.state.time;
+        let scaling = rk.pair.scaling();
+        let tolerance = control.tolerance;
         let mut rejected = false;
         loop {
             let h = control.next.min(limit);
-            let trial = rk.trial(self, t, h);
-            if trial.error <= control.tolerance {
+            let trial = rk.trial(self, t, h, tolerance);
+            if trial.error <= tolerance {
                 control.accepted += 1;
-                control.next = control.resize(h, trial.error, FIFTH_ORDER);
+                control.next = control.resize(h, trial.error, scaling);
                 if rejected {
                     control.next = control.next.min(h);
                 }
-                let (h, trial) = rk.crossing(self, t, h, &trial, threshold).unwrap_or((h, trial));
+                let (h, trial) = rk.crossing(self, t, h, &trial, threshold, tolerance).unwrap_or((h, trial));
                 self.accept_runge_kutta(rk, t + h, trial);
                 return Ok(h);
             }
             control.rejected += 1;
             rejected = true;
-            control.next = control.resize(h, trial.error, FIFTH_ORDER).min(0.5 * h);
+            control.next = control.resize(h, trial.error, scaling).min(0.5 * h);
             if control.next < control.dt_min {
-                return Err(if trial.error.is_finite() {
-                    AdaptiveError::StepTooSmall { dt: control.next, dt_min: control.dt_min, error: trial.error }
-                } else {
-                    AdaptiveError::Step(StepError::NonFinite)
+                return Err(match (trial.error.is_finite(), trial.failure) {
+                    (true, _) => {
+                        AdaptiveError::StepTooSmall { dt: control.next, dt_min: control.dt_min, error: trial.error }
+                    }
+                    (false, Some(failure)) => AdaptiveError::Step(failure),
+                    (false, None) => AdaptiveError::Step(StepError::NonFinite),
                 });
             }
         }
@@ -284,7 +335,7 @@ impl Dynamics {
     }
 
     /// The right-hand side `ẏ = f(t, y)` (module docs); fills `lambda` with each point's `Λ`.
-    fn rate_form(&self, t: f64, y: &[f64], rate: &mut [f64], lambda: &mut [f64]) {
+    pub(super) fn rate_form(&self, t: f64, y: &[f64], rate: &mut [f64], lambda: &mut [f64]) {
         let n = self.body.dofs();
         let m = self.contact.points.len();
         let (u, rest) = y.split_at(n);
@@ -324,8 +375,8 @@ impl Dynamics {
 }
 
 impl RungeKutta {
-    /// Reads the state of `dynamics` into one vector.
-    fn new(dynamics: &Dynamics) -> Self {
+    /// Reads the state of `dynamics` into one vector, for `method`.
+    fn new(dynamics: &Dynamics, method: Method) -> Self {
         let s = &dynamics.state;
         let n = dynamics.body.dofs();
         let m = s.contact.len();
@@ -359,21 +410,54 @@ impl RungeKutta {
         let mut lambda = vec![0.0; m];
         dynamics.rate_form(s.time, &y, &mut rate, &mut lambda);
         let len = y.len();
-        Self { at: (s.step, s.time), y, rate, lambda, scale, pair: Tsit5::new(len) }
+        let pair = match method {
+            Method::Tsit5 => Pair::Tsit5(Tsit5::new(len)),
+            Method::Sdirk4 => Pair::Sdirk4(Box::new(Sdirk4::new(len, m))),
+        };
+        Self { at: (s.step, s.time), y, rate, lambda, scale, pair }
     }
 
-    /// One step of `h` from the current state at `t`.
-    fn trial(&mut self, dynamics: &Dynamics, t: f64, h: f64) -> Trial {
-        let mut lambda = vec![0.0; self.lambda.len()];
-        let error = self
-            .pair
-            .step(&self.y, &self.rate, t, h, &self.scale, |t, y, rate| dynamics.rate_form(t, y, rate, &mut lambda));
-        Trial { y: self.pair.solution().to_vec(), rate: self.pair.solution_rate().to_vec(), lambda, error }
+    /// One step of `h` from the current state at `t`; `tolerance` is the error allowed per step.
+    fn trial(&mut self, dynamics: &mut Dynamics, t: f64, h: f64, tolerance: f64) -> Trial {
+        match &mut self.pair {
+            Pair::Tsit5(pair) => {
+                let mut lambda = vec![0.0; self.lambda.len()];
+                let error = pair.step(&self.y, &self.rate, t, h, &self.scale, |t, y, rate| {
+                    dynamics.rate_form(t, y, rate, &mut lambda)
+                });
+                let (y, rate) = (pair.solution().to_vec(), pair.solution_rate().to_vec());
+                Trial { y, rate, lambda, error, failure: None }
+            }
+            Pair::Sdirk4(pair) => match pair.step(dynamics, &self.y, &self.rate, t, h, &self.scale, tolerance) {
+                Ok(error) => Trial {
+                    y: pair.solution().to_vec(),
+                    rate: pair.solution_rate().to_vec(),
+                    lambda: pair.solution_lambda().to_vec(),
+                    error,
+                    failure: None,
+                },
+                Err(failure) => Trial {
+                    y: Vec::new(),
+                    rate: Vec::new(),
+                    lambda: Vec::new(),
+                    error: f64::INFINITY,
+                    failure: Some(failure),
+                },
+            },
+        }
     }
 
     /// If the accepted `trial` of `h` from `t` carries some point's `Λ` across `level`, the
     /// shortened step that ends just past the first such crossing, and its state.
-    fn crossing(&mut self, dynamics: &Dynamics, t: f64, h: f64, trial: &Trial, level: f64) -> Option<(f64, Trial)> {
+    fn crossing(
+        &mut self,
+        dynamics: &mut Dynamics,
+        t: f64,
+        h: f64,
+        trial: &Trial,
+        level: f64,
+        tolerance: f64,
+    ) -> Option<(f64, Trial)> {
         let side = |lambda: f64| lambda > level;
         // The point whose crossing comes first by linear interpolation of Λ over the step.
         let (point, _) = self
@@ -399,7 +483,10 @@ impl RungeKutta {
             if !(s > lo && s < hi) {
                 s = 0.5 * (lo + hi);
             }
-            let attempt = self.trial(dynamics, t, s);
+            let attempt = self.trial(dynamics, t, s, tolerance);
+            if attempt.failure.is_some() {
+                break;
+            }
             let value = g(&attempt.lambda);
             if !value.is_finite() {
                 break;

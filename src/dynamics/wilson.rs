@@ -226,6 +226,7 @@ pub struct Dynamics {
     /// The Jacobian's factorization, analyzed at its first use (Tsitouras' pair and central
     /// differences never need it).
     cholesky: Option<Cholesky>,
+    /// The mass coefficient and contact stiffnesses of the factored operator.
     factored: Option<(f64, Vec<f64>)>,
     ledger: Option<EnergyLedger>,
     /// `Σ w (μ_k f_n)² / 2α_t`: the contact springs' energy at kinetic strength, the scale the
@@ -281,8 +282,8 @@ impl NewtonProblem for FullSystem<'_> {
     }
 
     fn correct(&mut self, evaluation: &ContactResponse, delta: &mut [f64]) -> Result<(), StepError> {
-        self.dynamics.factor_jacobian(self.tau, &evaluation.stiffness)?;
-        self.dynamics.cholesky.as_ref().expect("factored above").solve_in_place(delta);
+        self.dynamics.factor_operator(6.0 / (self.tau * self.tau), &evaluation.stiffness)?;
+        self.dynamics.solve_operator(delta);
         Ok(())
     }
 }
@@ -627,15 +628,16 @@ impl Dynamics {
             .collect()
     }
 
-    /// Assembles and factors `6/τ² M + K + K_c` unless the factored one is the same.
-    fn factor_jacobian(&mut self, tau: f64, contact_stiffness: &[f64]) -> Result<(), StepError> {
-        if let Some((t, k)) = &self.factored
-            && *t == tau
+    /// Assembles and factors `c₀ M + K + K_c` unless the factored one is the same: Newton's
+    /// operator of Wilson's step (`c₀ = 6/τ²`) and of the implicit Runge–Kutta stages
+    /// ([`super::sdirk`], `c₀ = 1/(hγ)²`). `contact_stiffness` holds each point's `-w ∂f_t/∂ū`.
+    pub(super) fn factor_operator(&mut self, c0: f64, contact_stiffness: &[f64]) -> Result<(), StepError> {
+        if let Some((c, k)) = &self.factored
+            && *c == c0
             && k.as_slice() == contact_stiffness
         {
             return Ok(());
         }
-        let c0 = 6.0 / (tau * tau);
         let values = self.jacobian.values_mut();
         values.iter_mut().for_each(|v| *v = 0.0);
         for (&pos, &k) in self.stiffness_entries.iter().zip(self.body.stiffness.values()) {
@@ -655,9 +657,16 @@ impl Dynamics {
             Some(cholesky) => cholesky,
             None => self.cholesky.insert(Cholesky::analyze(&self.jacobian).map_err(StepError::Factor)?),
         };
+        // Until it succeeds, nothing is factored.
+        self.factored = None;
         cholesky.factor(&self.jacobian).map_err(StepError::Factor)?;
-        self.factored = Some((tau, contact_stiffness.to_vec()));
+        self.factored = Some((c0, contact_stiffness.to_vec()));
         Ok(())
+    }
+
+    /// Solves with the operator [`Self::factor_operator`] factored last.
+    pub(super) fn solve_operator(&self, rhs: &mut [f64]) {
+        self.cholesky.as_ref().expect("the operator is factored before it is solved with").solve_in_place(rhs);
     }
 
     /// Interpolates back to `t_{n+1}`, advances the contact states over `Δt`, and updates the

@@ -83,6 +83,14 @@ pub fn structure_rate(params: &FrictionParams, structure: f64, plastic_multiplie
         + gamma * params.xi * healing(params, structure)
 }
 
+/// `∂/∂(1/R*)` of [`structure_rate`] at fixed `Λ`:
+/// `-γ κ m (1/R* - 1)^{m-1} Λ - γ ξ n (μ_k/μ_s) (1 - μ_k/(μ_s R*))^{n-1}`.
+pub fn structure_rate_slope(params: &FrictionParams, structure: f64, plastic_multiplier: f64) -> f64 {
+    let gamma = params.rstar_scale();
+    -gamma * params.kappa * decay_slope(params, structure) * plastic_multiplier
+        + gamma * params.xi * healing_slope(params, structure)
+}
+
 /// Rate of `R*` itself, eq. (4) (with `γ`): `Ṙ* = γ R*² [κ (1/R* - 1)^m Λ - ξ (1 - μ_k/(μ_s R*))^n]`.
 pub fn r_star_rate(params: &FrictionParams, structure: f64, plastic_multiplier: f64) -> f64 {
     -structure_rate(params, structure, plastic_multiplier) / (structure * structure)
@@ -173,6 +181,19 @@ pub struct TangentialRate {
     pub d_traction: f64,
     /// `∂ḟ_t/∂(1/R*)` at fixed `v̄_t` and `f_t` (Pa/s).
     pub d_structure: f64,
+}
+
+impl TangentialRate {
+    /// `(∂Λ/∂f_t, ∂Λ/∂(1/R*), ∂Λ/∂v̄_t)`, from the tangential part of eq. (6) while loading,
+    /// `ḟ_t = -α_t v̄_t - α_t t Λ` (all 0 while unloading, where `Λ = 0`).
+    pub fn plastic_multiplier_partials(&self, params: &FrictionParams, state: &ContactState) -> [f64; 3] {
+        let sigma = state.direction();
+        if self.plastic_multiplier <= 0.0 || sigma == 0.0 {
+            return [0.0; 3];
+        }
+        let scale = -1.0 / (params.alpha_t * sigma);
+        [scale * self.d_traction, scale * self.d_structure, scale * (self.d_velocity + params.alpha_t)]
+    }
 }
 
 /// [`traction_rate`] for `v̄ = (v̄_t, 0)`, tangential component, with partial derivatives.

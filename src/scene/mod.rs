@@ -10,6 +10,7 @@ use std::fmt;
 use serde::{Deserialize, Serialize};
 
 use crate::case::{Case, Integrator, SceneSpec};
+use crate::dynamics::runge_kutta::Method;
 use crate::dynamics::{AdaptiveError, StepControl, StepError};
 use crate::friction::{ContactState, FrictionError, FrictionParams};
 
@@ -253,8 +254,8 @@ pub fn advance_dynamics(
 }
 
 /// One adaptive step of `dynamics` by `integrator`: Wilson's method by step doubling
-/// ([`crate::dynamics::adaptive`]), or Tsitouras' pair with the crossings of the slip-rate
-/// `threshold` (m/s) located ([`crate::dynamics::runge_kutta`]). Failures as in
+/// ([`crate::dynamics::adaptive`]), or Tsitouras' pair or SDIRK with the crossings of the
+/// slip-rate `threshold` (m/s) located ([`crate::dynamics::runge_kutta`]). Failures as in
 /// [`advance_dynamics`].
 pub fn advance_dynamics_adaptive(
     dynamics: &mut crate::dynamics::Dynamics,
@@ -266,7 +267,8 @@ pub fn advance_dynamics_adaptive(
     let (step, time) = (dynamics.state.step + 1, dynamics.state.time);
     let taken = match integrator {
         Integrator::Wilson => dynamics.adaptive_step(control, limit),
-        Integrator::Tsit5 => dynamics.runge_kutta_step(control, limit, threshold),
+        Integrator::Tsit5 => dynamics.runge_kutta_step(Method::Tsit5, control, limit, threshold),
+        Integrator::Sdirk4 => dynamics.runge_kutta_step(Method::Sdirk4, control, limit, threshold),
         // Central differences take fixed frames (their cases refuse a tolerance).
         Integrator::Central => dynamics.step(limit).map(|()| limit).map_err(AdaptiveError::Step),
     };

@@ -178,6 +178,10 @@ fn stepping(integrator: Integrator, tolerance: Option<f64>, steps: u64, dt: f64)
             "by Tsitouras' 5(4) pair from a step of {dt} s, tolerance {:e} per step",
             tolerance.unwrap_or(crate::case::TSIT5_DEFAULT_TOLERANCE)
         ),
+        (Integrator::Sdirk4, tolerance) => format!(
+            "by the L-stable SDIRK 4(3) from a step of {dt} s, tolerance {:e} per step",
+            tolerance.unwrap_or(crate::case::SDIRK4_DEFAULT_TOLERANCE)
+        ),
     }
 }
 

@@ -1,0 +1,76 @@
+//! Helpers shared by the integration tests that compare integrators on the shipped cases.
+
+// Each test file compiles its own copy and uses only some of them.
+#![allow(dead_code)]
+
+use slipfront::case::{self, Case, SceneSpec};
+use slipfront::dynamics::StepControl;
+use slipfront::run::{LoopOptions, Outcome, run};
+use slipfront::scene::block::BlockScene;
+use slipfront::scene::{self, Scene};
+
+/// The shipped case `cases/<name>.toml` with `--set` overrides.
+pub fn load(name: &str, overrides: &[&str]) -> Case {
+    let path = format!("{}/cases/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    let owned: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    case::load(std::path::Path::new(&path), &owned).unwrap()
+}
+
+/// Mean tangential traction of each segment at `t = every, 2 every, …, t_end`, stepping the
+/// scene to land on each instant.
+pub fn tractions(case: &Case, every: f64) -> Vec<Vec<f64>> {
+    let SceneSpec::Block(spec) = &case.scene else { panic!("a block case") };
+    let mut block = BlockScene::new(case, spec).unwrap();
+    let mut control = case
+        .time
+        .adaptive_tolerance()
+        .map(|tolerance| StepControl::new(tolerance, case.time.dt, case.time.dt_max(), case.time.dt_min()));
+    let samples = (case.time.t_end / every).round() as usize;
+    let mut out = Vec::new();
+    for k in 1..=samples {
+        let target = k as f64 * every;
+        while block.time() < target - 1e-9 {
+            let left = target - block.time();
+            match control.as_mut() {
+                Some(control) => {
+                    block.advance_adaptive(control, left).unwrap();
+                }
+                None => block.advance(case.time.dt.min(left)).unwrap(),
+            }
+        }
+        let frame = block.frame(Default::default(), 0.0);
+        out.push(frame.segments.iter().map(|s| s.traction_t).collect());
+    }
+    out
+}
+
+pub fn max_difference(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
+    a.iter().flatten().zip(b.iter().flatten()).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+}
+
+/// `(segment, onset)` of every slip event of a run of `case`, without output files.
+pub fn onsets(case: &Case) -> Vec<(usize, f64)> {
+    let mut scene = scene::build(case).unwrap();
+    match run(scene.as_mut(), &case.time, &mut Vec::new(), LoopOptions::for_case(case)) {
+        Outcome::Completed { catalog, .. } => catalog.events.iter().map(|e| (e.segment, e.onset)).collect(),
+        other => panic!("the run did not complete: {other:?}"),
+    }
+}
+
+/// Largest relative onset error `|t - t_ref| / t_ref` over the events of `reference`
+/// ([`onsets`]), matching the k-th event of each segment; `None` if
+/// the run does not have the reference's events.
+pub fn onset_error(run: &[(usize, f64)], reference: &[(usize, f64)]) -> Option<f64> {
+    if run.len() != reference.len() {
+        return None;
+    }
+    let mut worst = 0.0_f64;
+    for segment in reference.iter().map(|e| e.0) {
+        let mine = run.iter().filter(|e| e.0 == segment).map(|e| e.1);
+        let theirs = reference.iter().filter(|e| e.0 == segment).map(|e| e.1);
+        for (t, r) in mine.zip(theirs) {
+            worst = worst.max((t - r).abs() / r);
+        }
+    }
+    Some(worst)
+}
