@@ -241,7 +241,6 @@ fn main() {
             load(b.name, &o)
         };
         let tsit5 = |tolerance: f64| with(&["time.integrator=tsit5".into(), format!("time.tolerance={tolerance:e}")]);
-        let sdirk4 = |tolerance: f64| with(&["time.integrator=sdirk4".into(), format!("time.tolerance={tolerance:e}")]);
         eprintln!("{}: reference by tsit5 at tolerance {:e}", b.name, b.reference_tolerance);
         let reference = measure(&tsit5(b.reference_tolerance), 1).expect("the reference completes");
         let looser = measure(&tsit5(10.0 * b.reference_tolerance), 1).expect("the check completes");
@@ -258,38 +257,19 @@ fn main() {
                 m,
             });
         }
-        for &tol in b.tolerances {
-            eprintln!("{}: adaptive tolerance = {tol}", b.name);
-            let m = measure(&with(&[format!("time.tolerance={tol}")]), repeats);
-            rows.push(Row {
-                integrator: "Wilson-θ adaptive",
-                setting: format!("tolerance = {tol:e}"),
-                onset: 0.0,
-                traction: 0.0,
-                m,
-            });
-        }
-        for &tol in b.tsit5 {
-            eprintln!("{}: tsit5 tolerance = {tol}", b.name);
-            let m = measure(&tsit5(tol), repeats);
-            rows.push(Row {
-                integrator: "Tsit5",
-                setting: format!("tolerance = {tol:e}"),
-                onset: 0.0,
-                traction: 0.0,
-                m,
-            });
-        }
-        for &tol in b.sdirk4 {
-            eprintln!("{}: sdirk4 tolerance = {tol}", b.name);
-            let m = measure(&sdirk4(tol), repeats);
-            rows.push(Row {
-                integrator: "SDIRK4",
-                setting: format!("tolerance = {tol:e}"),
-                onset: 0.0,
-                traction: 0.0,
-                m,
-            });
+        // The adaptive rows: Wilson-θ by step doubling, then the two Runge–Kutta methods.
+        let adaptive: [(&'static str, &[f64], &str); 3] = [
+            ("Wilson-θ adaptive", b.tolerances, "wilson"),
+            ("Tsit5", b.tsit5, "tsit5"),
+            ("SDIRK4", b.sdirk4, "sdirk4"),
+        ];
+        for (integrator, tolerances, key) in adaptive {
+            for &tol in tolerances {
+                eprintln!("{}: {key} tolerance = {tol}", b.name);
+                let case = with(&[format!("time.integrator={key}"), format!("time.tolerance={tol:e}")]);
+                let m = measure(&case, repeats);
+                rows.push(Row { integrator, setting: format!("tolerance = {tol:e}"), onset: 0.0, traction: 0.0, m });
+            }
         }
         for row in &mut rows {
             if let Ok(m) = &row.m {
