@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{load, max_difference, tractions};
+use common::traction_errors_against_tsit5;
 use nalgebra::{DMatrix, SymmetricEigen};
 use slipfront::dynamics::central::highest_frequency;
 use slipfront::fem::{Block, PlaneStrain, StructuredMesh, assemble};
@@ -49,19 +49,8 @@ fn central_differences_converge_at_second_order_to_tsit5_on_the_paper_case() {
     // 0.005 s (one sub-step per frame: the stable step is 0.04 s on 10 × 1), against Tsit5 at
     // tolerance 1e-11, itself checked at 1e-10. Measured: errors 9.0e-4, 2.9e-4, 7.7e-5 Pa
     // (ratios 3.1 and 3.8, tending to 4), the reference's own 1.1e-6 Pa.
-    let t_end = "time.t_end=400";
-    let reference =
-        tractions(&load("paper_triangular", &[t_end, "time.integrator=tsit5", "time.tolerance=1e-11"]), 5.0);
-    let check = tractions(&load("paper_triangular", &[t_end, "time.integrator=tsit5", "time.tolerance=1e-10"]), 5.0);
-    let errors: Vec<f64> = ["0.02", "0.01", "0.005"]
-        .iter()
-        .map(|dt| {
-            let dt = format!("time.dt={dt}");
-            let central = tractions(&load("paper_triangular", &[t_end, "time.integrator=central", &dt]), 5.0);
-            max_difference(&central, &reference)
-        })
-        .collect();
-    let converged = max_difference(&check, &reference);
+    let runs = [0.02, 0.01, 0.005].map(|dt| ["time.integrator=central".to_string(), format!("time.dt={dt}")]);
+    let (converged, errors) = traction_errors_against_tsit5("1e-11", "1e-10", &runs);
     println!("reference converged to {converged:e} Pa; central differences' errors {errors:?} Pa");
     assert!(converged < 0.05 * errors[2], "the reference is far finer than the finest step");
     for pair in errors.windows(2) {

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{load, max_difference, onset_error, onsets, tractions};
+use common::{load, onset_error, onsets, traction_errors_against_tsit5};
 
 #[test]
 fn sdirk_tractions_converge_to_tsit5_as_the_tolerance_tightens() {
@@ -13,19 +13,8 @@ fn sdirk_tractions_converge_to_tsit5_as_the_tolerance_tightens() {
     // Tsit5 at 1e-12, itself checked at 1e-11. Looser tolerances stall near 1.2e-4 Pa (1e-7 of
     // the tractions): steps longer than the contact mode's period (ω ≈ 45 rad/s) damp its
     // ringing, as Wilson's method does, where both explicit reference runs keep it.
-    let t_end = "time.t_end=400";
-    let reference =
-        tractions(&load("paper_triangular", &[t_end, "time.integrator=tsit5", "time.tolerance=1e-12"]), 5.0);
-    let check = tractions(&load("paper_triangular", &[t_end, "time.integrator=tsit5", "time.tolerance=1e-11"]), 5.0);
-    let errors: Vec<f64> = ["1e-8", "1e-9", "1e-10"]
-        .iter()
-        .map(|tolerance| {
-            let tolerance = format!("time.tolerance={tolerance}");
-            let sdirk = tractions(&load("paper_triangular", &[t_end, "time.integrator=sdirk4", &tolerance]), 5.0);
-            max_difference(&sdirk, &reference)
-        })
-        .collect();
-    let converged = max_difference(&check, &reference);
+    let runs = ["1e-8", "1e-9", "1e-10"].map(|t| ["time.integrator=sdirk4".to_string(), format!("time.tolerance={t}")]);
+    let (converged, errors) = traction_errors_against_tsit5("1e-12", "1e-11", &runs);
     println!("reference converged to {converged:e} Pa; SDIRK's errors {errors:?} Pa");
     assert!(converged < 0.2 * errors[2], "the reference is far finer than the tightest tolerance");
     for pair in errors.windows(2) {

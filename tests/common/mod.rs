@@ -74,3 +74,19 @@ pub fn onset_error(run: &[(usize, f64)], reference: &[(usize, f64)]) -> Option<f
     }
     Some(worst)
 }
+
+/// The paper case's segment tractions every 5 s up to 400 s ([`tractions`]) by each run of
+/// `runs` (`--set` overrides), against Tsitouras' pair at `reference` tolerance: each run's
+/// largest difference (Pa), and the reference's own, against the same method at `check`.
+pub fn traction_errors_against_tsit5(reference: &str, check: &str, runs: &[[String; 2]]) -> (f64, Vec<f64>) {
+    let paper = |sets: &[&str]| {
+        let mut all = vec!["time.t_end=400"];
+        all.extend_from_slice(sets);
+        tractions(&load("paper_triangular", &all), 5.0)
+    };
+    let tsit5 = |tolerance: &str| paper(&["time.integrator=tsit5", &format!("time.tolerance={tolerance}")]);
+    let reference = tsit5(reference);
+    let converged = max_difference(&tsit5(check), &reference);
+    let errors = runs.iter().map(|[a, b]| max_difference(&paper(&[a, b]), &reference)).collect();
+    (converged, errors)
+}
