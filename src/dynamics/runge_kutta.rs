@@ -206,14 +206,12 @@ impl Tsit5 {
     }
 }
 
-/// One trial step: the new state, its rate and `Λ` there, and the error (infinite if the step
-/// failed, with the reason where an implicit method's solve gave one).
+/// One trial step: the new state, its rate and `Λ` there, and the error.
 struct Trial {
     y: Vec<f64>,
     rate: Vec<f64>,
     lambda: Vec<f64>,
     error: f64,
-    failure: Option<StepError>,
 }
 
 impl Dynamics {
@@ -254,10 +252,15 @@ impl Dynamics {
         let mut rejected = false;
         loop {
             let h = control.next.min(limit);
-            let trial = rk.trial(self, t, h, tolerance);
-            if trial.error <= tolerance {
+            // A failed implicit solve counts as an infinite error: the step shrinks.
+            let (trial, failure) = match rk.trial(self, t, h, tolerance) {
+                Ok(trial) => (Some(trial), None),
+                Err(failure) => (None, Some(failure)),
+            };
+            let error = trial.as_ref().map_or(f64::INFINITY, |trial| trial.error);
+            if let Some(trial) = trial.filter(|_| error <= tolerance) {
                 control.accepted += 1;
-                control.next = control.resize(h, trial.error, scaling);
+                control.next = control.resize(h, error, scaling);
                 if rejected {
                     control.next = control.next.min(h);
                 }
@@ -267,12 +270,10 @@ impl Dynamics {
             }
             control.rejected += 1;
             rejected = true;
-            control.next = control.resize(h, trial.error, scaling).min(0.5 * h);
+            control.next = control.resize(h, error, scaling).min(0.5 * h);
             if control.next < control.dt_min {
-                return Err(match (trial.error.is_finite(), trial.failure) {
-                    (true, _) => {
-                        AdaptiveError::StepTooSmall { dt: control.next, dt_min: control.dt_min, error: trial.error }
-                    }
+                return Err(match (error.is_finite(), failure) {
+                    (true, _) => AdaptiveError::StepTooSmall { dt: control.next, dt_min: control.dt_min, error },
                     (false, Some(failure)) => AdaptiveError::Step(failure),
                     (false, None) => AdaptiveError::Step(StepError::NonFinite),
                 });
@@ -418,7 +419,8 @@ impl RungeKutta {
     }
 
     /// One step of `h` from the current state at `t`; `tolerance` is the error allowed per step.
-    fn trial(&mut self, dynamics: &mut Dynamics, t: f64, h: f64, tolerance: f64) -> Trial {
+    /// Fails where an implicit method's solve does.
+    fn trial(&mut self, dynamics: &mut Dynamics, t: f64, h: f64, tolerance: f64) -> Result<Trial, StepError> {
         match &mut self.pair {
             Pair::Tsit5(pair) => {
                 let mut lambda = vec![0.0; self.lambda.len()];
@@ -426,24 +428,13 @@ impl RungeKutta {
                     dynamics.rate_form(t, y, rate, &mut lambda)
                 });
                 let (y, rate) = (pair.solution().to_vec(), pair.solution_rate().to_vec());
-                Trial { y, rate, lambda, error, failure: None }
+                Ok(Trial { y, rate, lambda, error })
             }
-            Pair::Sdirk4(pair) => match pair.step(dynamics, &self.y, &self.rate, t, h, &self.scale, tolerance) {
-                Ok(error) => Trial {
-                    y: pair.solution().to_vec(),
-                    rate: pair.solution_rate().to_vec(),
-                    lambda: pair.solution_lambda().to_vec(),
-                    error,
-                    failure: None,
-                },
-                Err(failure) => Trial {
-                    y: Vec::new(),
-                    rate: Vec::new(),
-                    lambda: Vec::new(),
-                    error: f64::INFINITY,
-                    failure: Some(failure),
-                },
-            },
+            Pair::Sdirk4(pair) => {
+                let error = pair.step(dynamics, &self.y, &self.rate, t, h, &self.scale, tolerance)?;
+                let (y, rate) = (pair.solution().to_vec(), pair.solution_rate().to_vec());
+                Ok(Trial { y, rate, lambda: pair.solution_lambda().to_vec(), error })
+            }
         }
     }
 
@@ -483,10 +474,7 @@ impl RungeKutta {
             if !(s > lo && s < hi) {
                 s = 0.5 * (lo + hi);
             }
-            let attempt = self.trial(dynamics, t, s, tolerance);
-            if attempt.failure.is_some() {
-                break;
-            }
+            let Ok(attempt) = self.trial(dynamics, t, s, tolerance) else { break };
             let value = g(&attempt.lambda);
             if !value.is_finite() {
                 break;
