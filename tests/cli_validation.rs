@@ -113,6 +113,11 @@ fn time_rules() {
         "time.tolerance = 0.00001 does not apply to time.integrator = \"central\", which takes fixed frames of \
          time.dt sub-stepped to its stability limit",
     );
+    // Out of range too, but for central differences the only useful error is that they take none.
+    let (code, stderr) = run_case(&c, &["time.integrator=central", "time.tolerance=0.5"]);
+    assert_eq!(code, 2, "stderr: {stderr}");
+    assert!(stderr.contains("time.tolerance = 0.5 does not apply to time.integrator = \"central\""), "{stderr}");
+    assert!(!stderr.contains("must lie in"), "a second, misleading error: {stderr}");
     expect_invalid(
         &case("point_loading.toml"),
         &["time.integrator=central"],

@@ -122,7 +122,9 @@ impl TimeSpec {
             );
         }
         c.positive("energy_tolerance", self.energy_tolerance);
+        // Central differences take no tolerance at all: that is the one error worth giving.
         if let Some(tolerance) = self.tolerance
+            && self.integrator != Integrator::Central
             && c.finite("tolerance", tolerance)
             && !(tolerance > 0.0 && tolerance <= 0.1)
         {
