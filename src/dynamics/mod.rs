@@ -6,6 +6,7 @@ pub mod central;
 pub mod condensed;
 pub mod contact;
 mod newton;
+mod operator;
 pub mod runge_kutta;
 pub mod sdirk;
 pub mod sparse;

@@ -29,7 +29,8 @@ use super::body::LinearBody;
 use super::condensed::Condensation;
 use super::contact::ContactBoundary;
 use super::newton::{NewtonProblem, max_abs, newton};
-use super::sparse::{Cholesky, FactorError, SymmetricMatrix};
+use super::operator::Operator;
+use super::sparse::FactorError;
 use crate::friction::{ContactState, FrictionError, Restart, update_from};
 
 /// Settings of the integrator.
@@ -219,15 +220,9 @@ pub struct Dynamics {
     pub state: State,
     initial_traction: Vec<f64>,
     pub(super) initial_contact_force: Vec<f64>,
-    jacobian: SymmetricMatrix,
-    diagonal: Vec<usize>,
-    stiffness_entries: Vec<usize>,
-    point_entries: Vec<[usize; 4]>,
-    /// The Jacobian's factorization, analyzed at its first use (Tsitouras' pair and central
-    /// differences never need it).
-    cholesky: Option<Cholesky>,
-    /// The mass coefficient and contact stiffnesses of the factored operator.
-    factored: Option<(f64, Vec<f64>)>,
+    /// Newton's operator `c₀ M + K + K_c`, built at its first use (Tsitouras' pair and
+    /// central differences never need it).
+    operator: Option<Operator>,
     ledger: Option<EnergyLedger>,
     /// `Σ w (μ_k f_n)² / 2α_t`: the contact springs' energy at kinetic strength, the scale the
     /// energy check uses before much work has been done.
@@ -336,32 +331,6 @@ impl Dynamics {
         for (point, s) in contact.points.iter().zip(&states) {
             point.scatter(point.weight * s.traction_t, &mut initial_contact_force);
         }
-        // The Jacobian's pattern: K, the diagonal, and every contact coupling.
-        let mut triplets: Vec<(usize, usize, f64)> = body.stiffness.entries().collect();
-        triplets.extend((0..n).map(|i| (i, i, 0.0)));
-        for p in &contact.points {
-            for a in 0..2 {
-                for b in 0..2 {
-                    triplets.push((p.dofs[a], p.dofs[b], 0.0));
-                }
-            }
-        }
-        let jacobian = SymmetricMatrix::from_triplets(n, &triplets);
-        let diagonal = (0..n).map(|i| jacobian.position(i, i).expect("diagonal in pattern")).collect();
-        let stiffness_entries = body
-            .stiffness
-            .entries()
-            .map(|(i, j, _)| jacobian.position(i, j).expect("K's pattern is in the Jacobian's"))
-            .collect();
-        let point_entries = contact
-            .points
-            .iter()
-            .map(|p| {
-                let pos =
-                    |a: usize, b: usize| jacobian.position(p.dofs[a], p.dofs[b]).expect("contact entry in pattern");
-                [pos(0, 0), pos(0, 1), pos(1, 0), pos(1, 1)]
-            })
-            .collect();
         let n_points = contact.points.len();
         let p = &contact.params;
         let energy_scale = contact
@@ -386,12 +355,7 @@ impl Dynamics {
             settings,
             initial_traction,
             initial_contact_force,
-            jacobian,
-            diagonal,
-            stiffness_entries,
-            point_entries,
-            cholesky: None,
-            factored: None,
+            operator: None,
             ledger: None,
             energy_scale,
             split_steps: 0,
@@ -632,41 +596,16 @@ impl Dynamics {
     /// operator of Wilson's step (`c₀ = 6/τ²`) and of the implicit Runge–Kutta stages
     /// ([`super::sdirk`], `c₀ = 1/(hγ)²`). `contact_stiffness` holds each point's `-w ∂f_t/∂ū`.
     pub(super) fn factor_operator(&mut self, c0: f64, contact_stiffness: &[f64]) -> Result<(), StepError> {
-        if let Some((c, k)) = &self.factored
-            && *c == c0
-            && k.as_slice() == contact_stiffness
-        {
-            return Ok(());
-        }
-        let values = self.jacobian.values_mut();
-        values.iter_mut().for_each(|v| *v = 0.0);
-        for (&pos, &k) in self.stiffness_entries.iter().zip(self.body.stiffness.values()) {
-            values[pos] += k;
-        }
-        for (i, &pos) in self.diagonal.iter().enumerate() {
-            values[pos] += c0 * self.body.mass[i];
-        }
-        for ((point, entries), &k) in self.contact.points.iter().zip(&self.point_entries).zip(contact_stiffness) {
-            let [n0, n1] = point.shape;
-            values[entries[0]] += k * n0 * n0;
-            values[entries[1]] += k * n0 * n1;
-            values[entries[2]] += k * n1 * n0;
-            values[entries[3]] += k * n1 * n1;
-        }
-        let cholesky = match self.cholesky.as_mut() {
-            Some(cholesky) => cholesky,
-            None => self.cholesky.insert(Cholesky::analyze(&self.jacobian).map_err(StepError::Factor)?),
+        let operator = match self.operator.as_mut() {
+            Some(operator) => operator,
+            None => self.operator.insert(Operator::new(&self.body, &self.contact).map_err(StepError::Factor)?),
         };
-        // Until it succeeds, nothing is factored.
-        self.factored = None;
-        cholesky.factor(&self.jacobian).map_err(StepError::Factor)?;
-        self.factored = Some((c0, contact_stiffness.to_vec()));
-        Ok(())
+        operator.factor(&self.body, &self.contact, c0, contact_stiffness).map_err(StepError::Factor)
     }
 
     /// Solves with the operator [`Self::factor_operator`] factored last.
     pub(super) fn solve_operator(&self, rhs: &mut [f64]) {
-        self.cholesky.as_ref().expect("the operator is factored before it is solved with").solve_in_place(rhs);
+        self.operator.as_ref().expect("the operator is factored before it is solved with").solve_in_place(rhs);
     }
 
     /// Interpolates back to `t_{n+1}`, advances the contact states over `Δt`, and updates the

@@ -1,0 +1,101 @@
+//! Newton's operator of the implicit integrators, `c₀ M + K + K_c`, assembled in one sparse
+//! pattern and factored.
+//!
+//! Wilson's step (`c₀ = 6/τ²`, [`super::wilson`]) and the SDIRK stages (`c₀ = 1/(hγ)²`,
+//! [`super::sdirk`]) both solve with it. `K_c = -Σ w Ñᵀ (∂f_t/∂ū) Ñ` is eq. (14)'s contact
+//! tangent. The explicit integrators never need it, so [`super::Dynamics`] builds it at its
+//! first use: on a fine mesh the pattern is as large as `K`'s, and its symbolic analysis takes
+//! as long as the rest of the set-up.
+
+use super::body::LinearBody;
+use super::contact::ContactBoundary;
+use super::sparse::{Cholesky, FactorError, SymmetricMatrix};
+
+/// `c₀ M + K + K_c`: its pattern, where each part's entries go in it, and its factorization.
+pub(super) struct Operator {
+    matrix: SymmetricMatrix,
+    /// Position of each diagonal entry (the mass term).
+    diagonal: Vec<usize>,
+    /// Position of each entry of `K`, in `K`'s order.
+    stiffness_entries: Vec<usize>,
+    /// Positions of each contact point's 2 × 2 coupling of its two nodes.
+    point_entries: Vec<[usize; 4]>,
+    cholesky: Cholesky,
+    /// The mass coefficient and contact stiffnesses factored last; `None` after a failure.
+    factored: Option<(f64, Vec<f64>)>,
+}
+
+impl Operator {
+    /// The pattern of `K`, the diagonal and every contact coupling, analyzed for factoring.
+    pub fn new(body: &LinearBody, contact: &ContactBoundary) -> Result<Self, FactorError> {
+        let n = body.dofs();
+        let mut triplets: Vec<(usize, usize, f64)> = body.stiffness.entries().collect();
+        triplets.extend((0..n).map(|i| (i, i, 0.0)));
+        for p in &contact.points {
+            for a in 0..2 {
+                for b in 0..2 {
+                    triplets.push((p.dofs[a], p.dofs[b], 0.0));
+                }
+            }
+        }
+        let matrix = SymmetricMatrix::from_triplets(n, &triplets);
+        let diagonal = (0..n).map(|i| matrix.position(i, i).expect("diagonal in pattern")).collect();
+        let stiffness_entries = body
+            .stiffness
+            .entries()
+            .map(|(i, j, _)| matrix.position(i, j).expect("K's pattern is in the operator's"))
+            .collect();
+        let point_entries = contact
+            .points
+            .iter()
+            .map(|p| {
+                let pos = |a: usize, b: usize| matrix.position(p.dofs[a], p.dofs[b]).expect("contact entry in pattern");
+                [pos(0, 0), pos(0, 1), pos(1, 0), pos(1, 1)]
+            })
+            .collect();
+        let cholesky = Cholesky::analyze(&matrix)?;
+        Ok(Self { matrix, diagonal, stiffness_entries, point_entries, cholesky, factored: None })
+    }
+
+    /// Assembles and factors `c₀ M + K + K_c` unless the factored one is the same;
+    /// `contact_stiffness` holds each point's `-w ∂f_t/∂ū`.
+    pub fn factor(
+        &mut self,
+        body: &LinearBody,
+        contact: &ContactBoundary,
+        c0: f64,
+        contact_stiffness: &[f64],
+    ) -> Result<(), FactorError> {
+        if let Some((c, k)) = &self.factored
+            && *c == c0
+            && k.as_slice() == contact_stiffness
+        {
+            return Ok(());
+        }
+        let values = self.matrix.values_mut();
+        values.iter_mut().for_each(|v| *v = 0.0);
+        for (&pos, &k) in self.stiffness_entries.iter().zip(body.stiffness.values()) {
+            values[pos] += k;
+        }
+        for (i, &pos) in self.diagonal.iter().enumerate() {
+            values[pos] += c0 * body.mass[i];
+        }
+        for ((point, entries), &k) in contact.points.iter().zip(&self.point_entries).zip(contact_stiffness) {
+            let [n0, n1] = point.shape;
+            values[entries[0]] += k * n0 * n0;
+            values[entries[1]] += k * n0 * n1;
+            values[entries[2]] += k * n1 * n0;
+            values[entries[3]] += k * n1 * n1;
+        }
+        // Until it succeeds, nothing is factored.
+        self.factored = None;
+        self.cholesky.factor(&self.matrix)?;
+        self.factored = Some((c0, contact_stiffness.to_vec()));
+        Ok(())
+    }
+
+    /// Solves with the operator [`Self::factor`] factored last, in place.
+    pub fn solve_in_place(&self, rhs: &mut [f64]) {
+        self.cholesky.solve_in_place(rhs);
+    }
+}
