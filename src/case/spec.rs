@@ -128,11 +128,10 @@ impl TimeSpec {
             && c.finite("tolerance", tolerance)
             && !(tolerance > 0.0 && tolerance <= 0.1)
         {
-            let meaning = match self.integrator {
-                Integrator::Wilson | Integrator::Central => "a relative local error per second, 1/s".to_string(),
-                Integrator::Tsit5 | Integrator::Sdirk4 => {
-                    format!("a relative local error per step of {}", self.integrator.name())
-                }
+            let meaning = if self.integrator == Integrator::Wilson {
+                "a relative local error per second, 1/s".to_string()
+            } else {
+                format!("a relative local error per step of {}", self.integrator.name())
             };
             c.fail("tolerance", tolerance, format!("must lie in (0, 0.1] ({meaning})"));
         }
