@@ -172,6 +172,17 @@ fn traction_error(run: &Measured, reference: &Measured, (from, to): (f64, f64)) 
     (diff / norm).sqrt()
 }
 
+/// Steps of `run` that end inside `(from, to]`.
+fn steps_within(run: &Measured, (from, to): (f64, f64)) -> u64 {
+    run.trace.times.iter().filter(|&&t| t > from && t <= to).count() as u64
+}
+
+/// How `ours` compares with Wilson's `theirs` (steps, attempts or time): "N× fewer …" or, where
+/// `ours` is the larger, "N× more …".
+fn compared(theirs: f64, ours: f64, fewer: &str, more: &str) -> String {
+    if ours <= theirs { format!("{:.1}× {fewer}", theirs / ours) } else { format!("{:.1}× {more}", ours / theirs) }
+}
+
 struct Benchmark {
     name: &'static str,
     title: &'static str,
@@ -293,10 +304,8 @@ fn main() {
             if let Ok(m) = &row.m {
                 row.onset = onset_error(m, &reference, b.horizon);
                 row.traction = traction_error(m, &reference, (0.0, b.window));
-                row.after_slips = b.after_slips.map(|window| {
-                    let steps = m.trace.times.iter().filter(|&&t| t > window.0 && t <= window.1).count();
-                    (traction_error(m, &reference, window), steps as u64)
-                });
+                row.after_slips =
+                    b.after_slips.map(|window| (traction_error(m, &reference, window), steps_within(m, window)));
             }
         }
         report.push_str(&format!(
@@ -320,7 +329,7 @@ fn main() {
                  in traction.",
                 window.0,
                 window.1,
-                reference.trace.times.iter().filter(|&&t| t > window.0 && t <= window.1).count(),
+                steps_within(&reference, window),
                 traction_error(&looser, &reference, window),
                 traction_error(&check, &reference, window)
             )),
@@ -424,27 +433,22 @@ fn equal_error(rows: &[Row], method: &str, metric: Metric) -> String {
         text.push_str(&match best {
             Some((r, (m, e, steps))) if metric == Metric::Onset => format!(
                 "- Wilson-θ {} ({what} error {f_error:.1e}, {f_steps} steps, {:.3} s): {method} {} ({e:.1e}) takes \
-                 {steps} steps and {} rejected, {:.1}× fewer steps and {:.1}× fewer attempts, in {:.3} s, {:.1}× less \
-                 time\n",
+                 {steps} steps and {} rejected, {} and {}, in {:.3} s, {}\n",
                 fixed.setting,
                 f.wall,
                 r.setting,
                 m.rejected,
-                f_steps as f64 / steps as f64,
-                f_steps as f64 / (steps + m.rejected) as f64,
+                compared(f_steps as f64, steps as f64, "fewer steps", "more steps"),
+                compared(f_steps as f64, (steps + m.rejected) as f64, "fewer attempts", "more attempts"),
                 m.wall,
-                f.wall / m.wall
+                compared(f.wall, m.wall, "less time", "more time")
             ),
             Some((r, (_, e, steps))) => format!(
                 "- Wilson-θ {} ({what} error {f_error:.1e}, {f_steps} steps): {method} {} ({e:.1e}) takes {steps} \
                  steps, {}\n",
                 fixed.setting,
                 r.setting,
-                if steps <= f_steps {
-                    format!("{:.1}× fewer", f_steps as f64 / steps as f64)
-                } else {
-                    format!("{:.1}× more", steps as f64 / f_steps as f64)
-                }
+                compared(f_steps as f64, steps as f64, "fewer", "more")
             ),
             None => {
                 format!("- Wilson-θ {} ({what} error {f_error:.1e}): no {method} row is as accurate\n", fixed.setting)
