@@ -28,7 +28,7 @@ use faer::linalg::solvers::{PartialPivLu, Solve};
 
 use super::body::LinearBody;
 use super::contact::ContactPoint;
-use super::sparse::{FactorError, SupernodalCholesky, SymmetricMatrix};
+use super::sparse::{Cholesky, FactorError, SymmetricMatrix};
 
 /// Right-hand sides solved together while computing `G` (memory: `n` values each).
 const BLOCK: usize = 64;
@@ -44,7 +44,7 @@ const GMRES_TOLERANCE: f64 = 1e-13;
 pub(crate) struct Condensation {
     /// The `τ` that `A` belongs to (s).
     pub(crate) tau: f64,
-    operator: SupernodalCholesky,
+    operator: Cholesky,
     /// The body's degree of freedom of each contact unknown, ascending.
     pub(crate) dofs: Vec<usize>,
     /// The contact points with their degrees of freedom renumbered to contact unknowns, so that
@@ -64,7 +64,7 @@ impl Condensation {
         let mut triplets: Vec<(usize, usize, f64)> = body.stiffness.entries().collect();
         triplets.extend((0..n).map(|i| (i, i, c0 * body.mass[i])));
         let matrix = SymmetricMatrix::from_triplets(n, &triplets);
-        let operator = SupernodalCholesky::new(&matrix)?;
+        let operator = Cholesky::new(&matrix)?;
 
         let mut dofs: Vec<usize> = points.iter().flat_map(|p| p.dofs).collect();
         dofs.sort_unstable();
