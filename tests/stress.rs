@@ -11,7 +11,7 @@
 
 use std::time::Instant;
 
-use slipfront::case::{self, Case, Integrator, SceneSpec};
+use slipfront::case::{self, Case, SceneSpec};
 use slipfront::dynamics::{Dynamics, StepControl};
 use slipfront::scene::block::BlockScene;
 use slipfront::scene::spring_block::SpringBlockScene;
@@ -65,7 +65,7 @@ struct Report {
     ratio: [f64; 2],
     structure: [f64; 2],
     /// The integrator's energy residual as a share of the work put in (positive: dissipated),
-    /// and the dissipated share; `None` for Tsitouras' pair, which keeps no energy ledger.
+    /// and the dissipated share; `None` for the integrators that keep no energy ledger.
     energy: Option<(f64, f64)>,
 }
 
@@ -82,8 +82,9 @@ fn stress(name: &str, overrides: &[&str]) -> Result<Report, RunError> {
     let params = case.friction.clone();
     let structure_max = params.mu_s / params.mu_k;
     let mut model = Model::build(&case)?;
-    let tsit5 = case.time.integrator == Integrator::Tsit5;
-    if !tsit5 {
+    // Wilson's method keeps an energy ledger; the others do not (`TimeSpec::energy_guard`).
+    let ledger = case.time.energy_guard().is_some();
+    if ledger {
         model.dynamics_mut().track_energy();
     }
     let time = &case.time;
@@ -155,7 +156,7 @@ fn stress(name: &str, overrides: &[&str]) -> Result<Report, RunError> {
     // A completed run keeps the contract of the energy check, which stops a run once the
     // integrator has created more than `time.energy_tolerance` of the work, and no integrator
     // dissipates more than was put in.
-    assert_eq!(report.energy.is_none(), tsit5, "{name} {overrides:?}: Wilson's runs keep the energy ledger");
+    assert_eq!(report.energy.is_some(), ledger, "{name} {overrides:?}: Wilson's runs keep the energy ledger");
     if let Some((numerical, _)) = report.energy {
         assert!(
             numerical >= -case.time.energy_tolerance && numerical <= 1.0,
@@ -259,6 +260,8 @@ fn long_stress_rows() {
         (PAPER, &["friction.m=2", "friction.n=0.5"]),
         (PAPER, &["friction.m=0.5", "friction.n=2"]),
         (PAPER, &["time.dt=1e-5", "time.t_end=10"]),
+        // SDIRK4 at its tightest tolerance through the paper case's slips (666 103 steps).
+        (PAPER, &["time.integrator=sdirk4", "time.tolerance=1e-11"]),
         // 1e6 s of the spring block: 1e7 steps of 0.1 s, about 130 stick-slip cycles.
         (SPRING, &["time.t_end=1e6", "time.dt=0.1"]),
     ]);
@@ -272,29 +275,50 @@ fn long_stress_rows() {
     refused(PAPER, &["time.t_end=1e6", "time.dt=0.1"], "time.dt", 100_000);
 }
 
+/// The extremes that the integrators other than Wilson's run through (adaptive ones with the
+/// slip-threshold crossings located): no normal traction (nothing transmitted, Λ = 0), 1e6 Pa,
+/// a structure range 1e-9 wide, no decay or no healing, other exponents, a soft and a stiff
+/// contact (ω = 1e3 rad/s on the spring block's mass), zero normal traction on part of the
+/// block, and the `tolerances` given (an adaptive integrator's loosest and tightest). They keep
+/// no energy ledger: the invariants after every step are what is checked.
+fn at_the_ends_of_the_ranges(integrator: &str, tolerances: &[&str]) {
+    let set = format!("time.integrator={integrator}");
+    let set = set.as_str();
+    let mut rows: Vec<(&str, Vec<&str>)> = vec![
+        (SPRING, vec![set, "scene.normal_traction=0"]),
+        (SPRING, vec![set, "scene.normal_traction=1e-3"]),
+        (SPRING, vec![set, "scene.normal_traction=1e6"]),
+        (SPRING, vec![set, "friction.mu_s=0.2000000002", "friction.structure0=1"]),
+        (SPRING, vec![set, "friction.kappa=0"]),
+        (SPRING, vec![set, "friction.xi=0"]),
+        (SPRING, vec![set, "friction.m=2", "friction.n=0.5"]),
+        (SPRING, vec![set, "friction.m=0.5", "friction.n=2"]),
+        (SPRING, vec![set, "friction.alpha_t=1e3"]),
+        (SPRING, vec![set, "friction.alpha_t=1e9"]),
+        (
+            PAPER,
+            vec![set, "scene.normal_traction={kind=\"table\", x=[0, 3, 10], value=[0, 0, 1200]}", "time.t_end=500"],
+        ),
+        (PAPER, vec![set, "friction.xi=0", "time.t_end=500"]),
+    ];
+    rows.extend(tolerances.iter().map(|tolerance| (SPRING, vec![set, *tolerance])));
+    let rows: Vec<(&str, &[&str])> = rows.iter().map(|(name, overrides)| (*name, overrides.as_slice())).collect();
+    matrix(&rows);
+}
+
 #[test]
 fn tsit5_at_the_ends_of_the_ranges() {
-    // Tsitouras' pair on the rate equations (adaptive, slip-threshold crossings located) through
-    // the same extremes: no normal traction (nothing transmitted, Λ = 0), 1e6 Pa, a structure
-    // range 1e-9 wide, no decay or no healing, other exponents, a soft and a stiff contact
-    // (ω = 1e3 rad/s on the spring block's mass), zero normal traction on part of the block,
-    // and its loosest and tightest tolerances. It has no energy ledger: the invariants after
-    // every step are what is checked.
-    const TSIT5: &str = "time.integrator=tsit5";
-    matrix(&[
-        (SPRING, &[TSIT5, "scene.normal_traction=0"]),
-        (SPRING, &[TSIT5, "scene.normal_traction=1e-3"]),
-        (SPRING, &[TSIT5, "scene.normal_traction=1e6"]),
-        (SPRING, &[TSIT5, "friction.mu_s=0.2000000002", "friction.structure0=1"]),
-        (SPRING, &[TSIT5, "friction.kappa=0"]),
-        (SPRING, &[TSIT5, "friction.xi=0"]),
-        (SPRING, &[TSIT5, "friction.m=2", "friction.n=0.5"]),
-        (SPRING, &[TSIT5, "friction.m=0.5", "friction.n=2"]),
-        (SPRING, &[TSIT5, "friction.alpha_t=1e3"]),
-        (SPRING, &[TSIT5, "friction.alpha_t=1e9"]),
-        (SPRING, &[TSIT5, "time.tolerance=0.1"]),
-        (SPRING, &[TSIT5, "time.tolerance=1e-14"]),
-        (PAPER, &[TSIT5, "scene.normal_traction={kind=\"table\", x=[0, 3, 10], value=[0, 0, 1200]}", "time.t_end=500"]),
-        (PAPER, &[TSIT5, "friction.xi=0", "time.t_end=500"]),
-    ]);
+    at_the_ends_of_the_ranges("tsit5", &["time.tolerance=0.1", "time.tolerance=1e-14"]);
+}
+
+#[test]
+fn sdirk4_at_the_ends_of_the_ranges() {
+    // Its tightest tolerance is the smallest a case may ask of it (`SDIRK4_SMALLEST_TOLERANCE`).
+    at_the_ends_of_the_ranges("sdirk4", &["time.tolerance=0.1", "time.tolerance=1e-11"]);
+}
+
+#[test]
+fn central_differences_at_the_ends_of_the_ranges() {
+    // It takes no tolerance.
+    at_the_ends_of_the_ranges("central", &[]);
 }

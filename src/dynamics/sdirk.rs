@@ -27,7 +27,7 @@
 //! ([`super::runge_kutta`]).
 
 use super::wilson::{Dynamics, StepError};
-use crate::friction::{ContactState, law};
+use crate::friction::{ContactState, FrictionParams, law};
 
 /// The diagonal `γ` of the tableau.
 pub const GAMMA: f64 = 0.25;
@@ -72,6 +72,32 @@ struct PointLinearization {
     follow: [f64; 2],
     /// `(∂Λ/∂f_t, ∂Λ/∂(1/R*), ∂Λ/∂v̄_t)`.
     lambda: [f64; 3],
+    /// `((I - hγ L)⁻¹ b)_f`: `∂ḟ_t/∂v̄_t` once the point's own state is eliminated.
+    traction_follows_velocity: f64,
+}
+
+impl PointLinearization {
+    /// The block of a point in `state`, sliding at `v_t` relative to the base, for `g = hγ`,
+    /// from the analytic partials of eqs. (4)–(6).
+    fn at(params: &FrictionParams, state: &ContactState, v_t: f64, g: f64) -> Self {
+        let r = law::tangential_rate(params, state, v_t);
+        let lambda = r.plastic_multiplier_partials(params, state);
+        // d(1/R*)/dt = -γ κ (1/R* - 1)^m Λ + γ ξ (…)^n (eq. 4).
+        let decay = -params.rstar_scale() * params.kappa * law::decay(params, state.structure);
+        let slope = law::structure_rate_slope(params, state.structure, r.plastic_multiplier);
+        let l = [[r.d_traction, r.d_structure], [decay * lambda[0], decay * lambda[1] + slope]];
+        let b = [r.d_velocity, decay * lambda[2]];
+        let a = [[1.0 - g * l[0][0], -g * l[0][1]], [-g * l[1][0], 1.0 - g * l[1][1]]];
+        let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+        let inverse = [[a[1][1] / det, -a[0][1] / det], [-a[1][0] / det, a[0][0] / det]];
+        let times_b = |row: [f64; 2]| row[0] * b[0] + row[1] * b[1];
+        let follow = [g * times_b(inverse[0]), g * times_b(inverse[1])];
+        Self { inverse, follow, lambda, traction_follows_velocity: times_b(inverse[0]) }
+    }
+
+    fn is_finite(&self) -> bool {
+        self.inverse.iter().flatten().chain(&self.follow).chain(&self.lambda).all(|x| x.is_finite())
+    }
 }
 
 /// The method's stages and workspace on `ẏ = f(t, y)` of one [`Dynamics`].
@@ -230,26 +256,24 @@ impl Sdirk4 {
         let base = dynamics.contact.base_velocity_at(t);
         let mut stiffness = Vec::with_capacity(m);
         for (i, point) in dynamics.contact.points.iter().enumerate() {
-            let state = ContactState {
+            let mut state = ContactState {
                 traction_t: y[2 * n + i],
                 traction_n: dynamics.contact.traction_n[i],
                 structure: y[2 * n + m + i],
                 plastic_slip: y[2 * n + 2 * m + i],
             };
-            let r = law::tangential_rate(params, &state, point.interpolate(v) - base);
-            let lambda = r.plastic_multiplier_partials(params, &state);
-            // d(1/R*)/dt = -γ κ (1/R* - 1)^m Λ + γ ξ (…)^n (eq. 4).
-            let decay = -params.rstar_scale() * params.kappa * law::decay(params, state.structure);
-            let slope = law::structure_rate_slope(params, state.structure, r.plastic_multiplier);
-            let l = [[r.d_traction, r.d_structure], [decay * lambda[0], decay * lambda[1] + slope]];
-            let b = [r.d_velocity, decay * lambda[2]];
-            let a = [[1.0 - g * l[0][0], -g * l[0][1]], [-g * l[1][0], 1.0 - g * l[1][1]]];
-            let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-            let inverse = [[a[1][1] / det, -a[0][1] / det], [-a[1][0] / det, a[0][0] / det]];
-            let times_b = |row: [f64; 2]| row[0] * b[0] + row[1] * b[1];
-            let follow = [g * times_b(inverse[0]), g * times_b(inverse[1])];
-            self.points[i] = PointLinearization { inverse, follow, lambda };
-            stiffness.push(-point.weight * times_b(inverse[0]));
+            let v_t = point.interpolate(v) - base;
+            let mut linearization = PointLinearization::at(params, &state, v_t, g);
+            if !linearization.is_finite() {
+                // With m < 1 or n < 1, eq. (4)'s powers have infinite slopes at the ends of
+                // 1/R*'s range. Newton's matrix is then taken a hair inside the range; the
+                // residual it corrects stays the exact one.
+                let hair = 1e-9 * (params.max_structure() - 1.0);
+                state.structure = state.structure.clamp(1.0 + hair, params.max_structure() - hair);
+                linearization = PointLinearization::at(params, &state, v_t, g);
+            }
+            self.points[i] = linearization;
+            stiffness.push(-point.weight * linearization.traction_follows_velocity);
         }
         if stiffness.iter().any(|k| !k.is_finite()) {
             return Err(StepError::NonFinite);
