@@ -2,18 +2,15 @@
 //! catalogs of the shipped cases, the time-step convergence of the paper case, and its energy
 //! balance. `cargo test --release --test paper_case -- --nocapture` prints the README's table.
 
-use slipfront::case::{self, Case, SceneSpec};
+mod common;
+
+use common::load;
+use slipfront::case::{Case, SceneSpec};
 use slipfront::ensemble::{available_threads, run_ensemble};
 use slipfront::scene::block::BlockScene;
 use slipfront::scene::{Frame, Needs, Scene};
 use slipfront::sink::events::{EventDetector, Rupture, SlipEvent, ruptures};
 use slipfront::sink::observations::{Observations, Verdict, median};
-
-fn load(name: &str, overrides: &[&str]) -> Case {
-    let path = format!("{}/cases/{name}.toml", env!("CARGO_MANIFEST_DIR"));
-    let owned: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    case::load(std::path::Path::new(&path), &owned).unwrap()
-}
 
 struct Run {
     events: Vec<SlipEvent>,

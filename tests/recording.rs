@@ -2,10 +2,13 @@
 //! official tools, `check` catching damage, the stored blueprint, and the stuck limit read back
 //! from a recording.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use slipfront::case::{self, Case};
+use common::load;
+use slipfront::case::Case;
 use slipfront::inspect::check::{Expectations, check};
 use slipfront::inspect::{Recording, rrd};
 use slipfront::run::{LoopOptions, Outcome, run};
@@ -113,11 +116,6 @@ impl Sink for Frames {
     fn finish(&mut self, _: Ending, _: Option<&Frame>, _: &Catalog) -> Result<(), SinkError> {
         Ok(())
     }
-}
-
-fn load(name: &str, sets: &[&str]) -> Case {
-    let owned: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-    case::load(Path::new(&case_path(name)), &owned).unwrap()
 }
 
 /// Runs `case` through a Rerun sink and a frame collector in the same run.

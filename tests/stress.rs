@@ -9,9 +9,12 @@
 //! Quick rows run by default; `cargo test --release --test stress -- --ignored --nocapture` runs
 //! the long ones (`.ci/run` does). Every row prints its steps, split steps, extremes and energy.
 
+mod common;
+
 use std::time::Instant;
 
-use slipfront::case::{self, Case, SceneSpec};
+use common::load;
+use slipfront::case::{Case, SceneSpec};
 use slipfront::dynamics::{Dynamics, StepControl};
 use slipfront::scene::block::BlockScene;
 use slipfront::scene::spring_block::SpringBlockScene;
@@ -67,12 +70,6 @@ struct Report {
     /// The integrator's energy residual as a share of the work put in (positive: dissipated),
     /// and the dissipated share; `None` for the integrators that keep no energy ledger.
     energy: Option<(f64, f64)>,
-}
-
-fn load(name: &str, overrides: &[&str]) -> Case {
-    let path = format!("{}/cases/{name}.toml", env!("CARGO_MANIFEST_DIR"));
-    let owned: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    case::load(std::path::Path::new(&path), &owned).unwrap_or_else(|e| panic!("{name} {overrides:?}: {e}"))
 }
 
 /// Runs `name` with `overrides`, checking the invariants after every step (fixed or adaptive,

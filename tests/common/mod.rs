@@ -13,7 +13,7 @@ use slipfront::scene::{self, Scene};
 pub fn load(name: &str, overrides: &[&str]) -> Case {
     let path = format!("{}/cases/{name}.toml", env!("CARGO_MANIFEST_DIR"));
     let owned: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
-    case::load(std::path::Path::new(&path), &owned).unwrap()
+    case::load(std::path::Path::new(&path), &owned).unwrap_or_else(|e| panic!("{name} {overrides:?}: {e}"))
 }
 
 /// Mean tangential traction of each segment at `t = every, 2 every, …, t_end`, stepping the
