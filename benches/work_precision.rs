@@ -14,7 +14,7 @@
 //! - onset: the largest relative error `|t - t_ref| / t_ref` of slip-event onsets, matching the
 //!   k-th event of each segment; infinite if the runs have different events. The paper case is
 //!   compared up to 450 s only: its event sequence is chaotic after its first slips (see
-//!   `slipfront::ensemble`), and any change of step rearranges later events.
+//!   `slipfront::study::ensemble`), and any change of step rearranges later events.
 //! - traction: the relative L2 error of the total friction force over the first 300 s (the
 //!   paper case: elastic waves and quasi-static loading before slip), and over the whole
 //!   1000 s for the spring block (whose first slip comes at 790 s).
@@ -31,11 +31,13 @@ use std::path::Path;
 use std::time::Instant;
 
 use slipfront::case::{self, Case};
-use slipfront::figures::{WorkPrecisionCurve, plot_work_precision};
+use slipfront::catalog::events::Catalog;
+use slipfront::frame::Ending;
+use slipfront::frame::{Frame, Layout};
 use slipfront::run::{LoopOptions, Outcome, run};
-use slipfront::scene::{self, Frame, Layout};
-use slipfront::sink::events::Catalog;
-use slipfront::sink::{Ending, Sink, SinkError};
+use slipfront::scene;
+use slipfront::sink::{Sink, SinkError};
+use slipfront::study::figures::{WorkPrecisionCurve, plot_work_precision};
 
 /// Collects `(t, total friction force)` of every step.
 #[derive(Default)]

@@ -1,5 +1,5 @@
 //! Sweeps the triangular normal stress of the paper's case (its magnitude is only in the
-//! paper's Figure 7). Each triangle is run as a perturbed ensemble ([`slipfront::ensemble`]),
+//! paper's Figure 7). Each triangle is run as a perturbed ensemble ([`slipfront::study::ensemble`]),
 //! because the events after the first slips are chaotic, and the table gives, per triangle, in
 //! how many members each of the paper's observations 1–3 holds ([`Verdict`]), with the members'
 //! median slip counts at the ends and mean `1/R*` before the ends' slips.
@@ -9,8 +9,8 @@
 //! `--members 1` gives the shipped case alone, with its ruptures.
 
 use slipfront::case;
-use slipfront::ensemble::{available_threads, run_ensemble};
-use slipfront::sink::observations::{Observations, Verdict, median};
+use slipfront::catalog::observations::{Observations, Verdict, median};
+use slipfront::study::ensemble::{available_threads, run_ensemble};
 
 fn main() {
     let mut pairs: Vec<(f64, f64)> = Vec::new();

@@ -5,7 +5,8 @@
 //! cargo run --release --example perturbation -- CASE.toml --set friction.structure0=2.000000000002 [--every 10]
 
 use slipfront::case;
-use slipfront::scene::{self, Needs};
+use slipfront::frame::Needs;
+use slipfront::scene;
 
 fn main() {
     let mut args = std::env::args().skip(1);

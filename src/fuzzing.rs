@@ -28,8 +28,8 @@ pub fn case_parse(data: &[u8]) -> bool {
 
 /// Reading an MCAP log as `slipfront check` and `slipfront replay` do.
 pub fn mcap_read(data: &[u8]) -> bool {
-    match crate::mcap_log::reader::from_bytes(data, "input.mcap") {
-        Ok(log) => crate::replay::replayed_recording(&log).is_ok(),
+    match crate::inspect::mcap::from_bytes(data, "input.mcap") {
+        Ok(log) => crate::study::replay::replayed_recording(&log).is_ok(),
         Err(_) => false,
     }
 }

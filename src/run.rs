@@ -7,10 +7,11 @@ use std::time::{Duration, Instant};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::case::{Case, TimeSpec};
-use crate::dynamics::StepControl;
-use crate::scene::{Frame, Layout, Needs, RunError, Scene};
-use crate::sink::events::{Catalog, EventDetector};
-use crate::sink::{Ending, Sink, SinkError};
+use crate::catalog::events::{Catalog, EventDetector};
+use crate::frame::Ending;
+use crate::frame::{Frame, Layout, Needs};
+use crate::scene::{RunError, Scene};
+use crate::sink::{Sink, SinkError};
 
 /// How a run ended. Every variant but `Sink` comes with the catalog up to the last good step.
 #[derive(Debug)]
@@ -89,17 +90,78 @@ impl Observers<'_, '_> {
     }
 }
 
-/// Runs `scene` from its current time to `time.t_end` in steps of `time.dt` (the last one
-/// shortened to land on `t_end`).
+/// Runs `scene` from its current time to `time.t_end`: in steps of `time.dt` (the last one
+/// shortened to land on `t_end`), or in the steps an adaptive integrator chooses. The loop is
+/// begin → (step → record)* → finish; every sink is finished however the run ends.
 pub fn run(
     scene: &mut dyn Scene,
     time: &TimeSpec,
     sinks: &mut [Box<dyn Sink + '_>],
     options: LoopOptions<'_>,
 ) -> Outcome {
+    let (mut observers, needs) = match begin(scene, sinks, &options) {
+        Ok(begun) => begun,
+        Err(e) => return Outcome::Sink(e),
+    };
+    let steps = time.steps();
+    let adaptive = time.adaptive_tolerance().is_some();
+    let start = Instant::now();
+    let mut progress = Progress::new(options.progress);
+    let mut k: u64 = 0;
+    loop {
+        let done = if adaptive { time.t_end - scene.time() <= 1e-9 * time.dt } else { k == steps };
+        if done {
+            break;
+        }
+        if options.interrupt.is_some_and(|flag| flag.load(Ordering::SeqCst)) {
+            progress.clear();
+            return match observers.finish(Ending::Interrupted) {
+                Ok(catalog) => Outcome::Interrupted { steps: k, catalog },
+                Err(e) => Outcome::Sink(e),
+            };
+        }
+        k += 1;
+        let dt = match scene.advance(step_limit(scene, time, adaptive, k, steps)) {
+            Ok(dt) => dt,
+            Err(error) => {
+                progress.clear();
+                return match observers.finish(Ending::Failed) {
+                    Ok(catalog) => Outcome::Failed { error, catalog },
+                    Err(e) => Outcome::Sink(e),
+                };
+            }
+        };
+        if let Err(e) = observers.record(scene.frame(needs, dt)) {
+            progress.clear();
+            let _ = observers.finish(Ending::Failed);
+            return Outcome::Sink(e);
+        }
+        progress.show(k, scene.time(), time.t_end, start);
+    }
+    progress.clear();
+    let statistics = scene.statistics();
+    match observers.finish(Ending::Completed) {
+        Ok(catalog) => Outcome::Completed {
+            steps: k,
+            rejected: statistics.rejected,
+            newton_iterations: statistics.newton_iterations,
+            factorizations: statistics.factorizations,
+            wall: start.elapsed(),
+            catalog,
+        },
+        Err(e) => Outcome::Sink(e),
+    }
+}
+
+/// Begins every sink (all of them even if one fails, so that the others are finished as
+/// valid, empty files of a failed run) and records the initial frame. Returns the observers
+/// and what every frame must hold.
+fn begin<'s, 'b>(
+    scene: &dyn Scene,
+    sinks: &'s mut [Box<dyn Sink + 'b>],
+    options: &LoopOptions<'_>,
+) -> Result<(Observers<'s, 'b>, Needs), SinkError> {
     let layout: Layout = scene.layout().clone();
-    // Every sink begins even if one fails (a full disk under one file), so that the others
-    // are finished as valid, empty files of a failed run.
     let mut begun = Ok(());
     for sink in sinks.iter_mut() {
         let result = sink.begin(&layout);
@@ -117,83 +179,58 @@ pub fn run(
         // The initial state is the last good step: the sinks that began keep it.
         observers.last = Some(scene.frame(needs, 0.0));
         let _ = observers.finish(Ending::Failed);
-        return Outcome::Sink(e);
+        return Err(e);
     }
     if let Err(e) = observers.record(scene.frame(needs, 0.0)) {
         let _ = observers.finish(Ending::Failed);
-        return Outcome::Sink(e);
+        return Err(e);
+    }
+    Ok((observers, needs))
+}
+
+/// The most step `k` of `steps` may take: with fixed steps, to `k dt` exactly (no drift) and
+/// the last one to `t_end`; with adaptive ones, the rest of the span.
+fn step_limit(scene: &dyn Scene, time: &TimeSpec, adaptive: bool, k: u64, steps: u64) -> f64 {
+    if adaptive {
+        return time.t_end - scene.time();
+    }
+    let target = if k == steps { time.t_end } else { k as f64 * time.dt };
+    target - scene.time()
+}
+
+/// A progress bar on stderr, shown once a run has taken longer than a second, in thousandths
+/// of the simulated span so that fixed and adaptive steps show alike.
+struct Progress {
+    enabled: bool,
+    shown: bool,
+    bar: ProgressBar,
+}
+
+impl Progress {
+    fn new(enabled: bool) -> Self {
+        let bar = ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::hidden());
+        bar.set_style(
+            ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {msg}, eta {eta}")
+                .expect("a valid template")
+                .progress_chars("=> "),
+        );
+        Self { enabled, shown: false, bar }
     }
 
-    let steps = time.steps();
-    let start = Instant::now();
-    // Progress in thousandths of the simulated span, so that fixed and adaptive steps show alike.
-    let bar = ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::hidden());
-    bar.set_style(
-        ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {msg}, eta {eta}")
-            .expect("a valid template")
-            .progress_chars("=> "),
-    );
-    let mut control =
-        time.adaptive_tolerance().map(|tolerance| StepControl::new(tolerance, time.dt, time.dt_max(), time.dt_min()));
-    let mut shown = false;
-    let mut k: u64 = 0;
-    loop {
-        let done = match &control {
-            Some(_) => time.t_end - scene.time() <= 1e-9 * time.dt,
-            None => k == steps,
-        };
-        if done {
-            break;
+    /// After step `k`, at simulated time `t` of `t_end`.
+    fn show(&mut self, k: u64, t: f64, t_end: f64, start: Instant) {
+        if !self.enabled || !k.is_multiple_of(64) {
+            return;
         }
-        if options.interrupt.is_some_and(|flag| flag.load(Ordering::SeqCst)) {
-            bar.finish_and_clear();
-            return match observers.finish(Ending::Interrupted) {
-                Ok(catalog) => Outcome::Interrupted { steps: k, catalog },
-                Err(e) => Outcome::Sink(e),
-            };
+        if !self.shown && start.elapsed() > Duration::from_secs(1) {
+            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+            self.shown = true;
         }
-        k += 1;
-        let advanced = match &mut control {
-            Some(control) => scene.advance_adaptive(control, time.t_end - scene.time()),
-            None => {
-                // Step ends at k dt exactly (no drift), the last one at t_end.
-                let target = if k == steps { time.t_end } else { k as f64 * time.dt };
-                let dt = target - scene.time();
-                scene.advance(dt).map(|()| dt)
-            }
-        };
-        let dt = match advanced {
-            Ok(dt) => dt,
-            Err(error) => {
-                bar.finish_and_clear();
-                return match observers.finish(Ending::Failed) {
-                    Ok(catalog) => Outcome::Failed { error, catalog },
-                    Err(e) => Outcome::Sink(e),
-                };
-            }
-        };
-        if let Err(e) = observers.record(scene.frame(needs, dt)) {
-            bar.finish_and_clear();
-            let _ = observers.finish(Ending::Failed);
-            return Outcome::Sink(e);
-        }
-        if options.progress && k.is_multiple_of(64) {
-            if !shown && start.elapsed() > Duration::from_secs(1) {
-                bar.set_draw_target(ProgressDrawTarget::stderr());
-                shown = true;
-            }
-            bar.set_position((1000.0 * scene.time() / time.t_end) as u64);
-            bar.set_message(format!("t = {:.1} of {} s, step {k}", scene.time(), time.t_end));
-        }
+        self.bar.set_position((1000.0 * t / t_end) as u64);
+        self.bar.set_message(format!("t = {t:.1} of {t_end} s, step {k}"));
     }
-    let steps = k;
-    let counts = control.as_ref().map_or((0, 0, 0), |c| (c.rejected, c.newton_iterations, c.factorizations));
-    let (rejected, newton_iterations, factorizations) = counts;
-    bar.finish_and_clear();
-    match observers.finish(Ending::Completed) {
-        Ok(catalog) => {
-            Outcome::Completed { steps, rejected, newton_iterations, factorizations, wall: start.elapsed(), catalog }
-        }
-        Err(e) => Outcome::Sink(e),
+
+    fn clear(&self) {
+        self.bar.finish_and_clear();
     }
 }

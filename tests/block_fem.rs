@@ -2,8 +2,9 @@
 
 use slipfront::case::SceneSpec;
 use slipfront::case::{self, Case};
+use slipfront::frame::Needs;
+use slipfront::scene::Scene;
 use slipfront::scene::block::BlockScene;
-use slipfront::scene::{Needs, Scene};
 
 fn paper_case(overrides: &[&str]) -> Case {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/cases/paper_triangular.toml")).unwrap();
@@ -58,7 +59,7 @@ fn measured_period(case: &Case, initial_velocity: f64, dt: f64, periods: f64, ex
     let mut scene = block_scene(case);
     let mesh = scene.layout().mesh.unwrap();
     {
-        let d = scene.dynamics_mut();
+        let d = scene.system_mut();
         for i in 0..=mesh.nx {
             let [x, _] = mesh.node_dofs(mesh.surface_node(i)).unwrap();
             d.state.velocity[x] = initial_velocity;
@@ -141,14 +142,14 @@ fn condensed_newton_follows_the_full_one_through_slip() {
     let mut full = block_scene(&case);
     let mut tight = block_scene(&case);
     let mut condensed = block_scene(&case);
-    full.dynamics_mut().settings.linear_solver = LinearSolver::Full;
-    tight.dynamics_mut().settings.linear_solver = LinearSolver::Full;
-    tight.dynamics_mut().settings.tolerance *= 0.01;
-    condensed.dynamics_mut().settings.linear_solver = LinearSolver::Condensed;
+    full.system_mut().settings.linear_solver = LinearSolver::Full;
+    tight.system_mut().settings.linear_solver = LinearSolver::Full;
+    tight.system_mut().settings.tolerance *= 0.01;
+    condensed.system_mut().settings.linear_solver = LinearSolver::Condensed;
     let largest = |v: &mut dyn Iterator<Item = f64>| v.fold(1e-300_f64, |m, x| m.max(x.abs()));
     // Worst relative differences (displacement, traction) of `b` from `a`.
     let differences = |a: &BlockScene, b: &BlockScene| {
-        let (a, b) = (&a.dynamics().state, &b.dynamics().state);
+        let (a, b) = (&a.system().state, &b.system().state);
         let du = largest(&mut a.displacement.iter().zip(&b.displacement).map(|(x, y)| x - y))
             / largest(&mut a.displacement.iter().copied());
         let dt = largest(&mut a.contact.iter().zip(&b.contact).map(|(x, y)| x.traction_t - y.traction_t))
@@ -170,7 +171,7 @@ fn condensed_newton_follows_the_full_one_through_slip() {
             tolerance_own = worse(tolerance_own, differences(&full, &tight));
         }
         // A slip event: plastic slip faster than the case's threshold (3 mm/s).
-        slipped |= full.dynamics().state.plastic_increment.iter().any(|p| *p > 0.003 * 0.01);
+        slipped |= full.system().state.plastic_increment.iter().any(|p| *p > 0.003 * 0.01);
     }
     println!(
         "worst relative differences (displacement, traction): loading {loading:?}; through slip {slipping:?}, \

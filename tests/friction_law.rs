@@ -3,9 +3,10 @@
 
 use nalgebra::Vector2;
 use slipfront::case::{Phase, PointSpec};
+use slipfront::frame::Needs;
 use slipfront::friction::{ContactState, FrictionParams, RStarLaw, law, update};
+use slipfront::scene::Scene;
 use slipfront::scene::point::PointScene;
-use slipfront::scene::{Needs, Scene};
 
 fn paper() -> FrictionParams {
     FrictionParams::paper()

@@ -6,8 +6,10 @@ use std::process::Command;
 
 use prost::Message as _;
 use prost_reflect::{DescriptorPool, DynamicMessage, Value};
+use slipfront::inspect::mcap as reader;
 use slipfront::inspect::rrd;
-use slipfront::mcap_log::{self, proto, reader};
+use slipfront::record::mcap as mcap_log;
+use slipfront::record::proto;
 
 fn scratch(tag: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("slipfront-mcap-{tag}-{}", std::process::id()));
@@ -418,7 +420,7 @@ fn a_log_alone_without_a_recording_holds_the_nodes() {
         dir.to_str().unwrap(),
     ]);
     assert_eq!(code, 0, "{text}");
-    let read = slipfront::mcap_log::reader::read(&log).unwrap();
+    let read = slipfront::inspect::mcap::read(&log).unwrap();
     let frame = read.frames.last().unwrap();
     assert_eq!(frame.surface_nodes.len(), 11, "all 11 surface nodes (the default up to 64 segments)");
     assert!(frame.surface_nodes.iter().all(|u| u[0].is_finite() && u[1].is_finite()));

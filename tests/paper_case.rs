@@ -6,11 +6,12 @@ mod common;
 
 use common::load;
 use slipfront::case::{Case, SceneSpec};
-use slipfront::ensemble::{available_threads, run_ensemble};
+use slipfront::catalog::events::{EventDetector, Rupture, SlipEvent, ruptures};
+use slipfront::catalog::observations::{Observations, Verdict, median};
+use slipfront::frame::{Frame, Needs};
+use slipfront::scene::Scene;
 use slipfront::scene::block::BlockScene;
-use slipfront::scene::{Frame, Needs, Scene};
-use slipfront::sink::events::{EventDetector, Rupture, SlipEvent, ruptures};
-use slipfront::sink::observations::{Observations, Verdict, median};
+use slipfront::study::ensemble::{available_threads, run_ensemble};
 
 struct Run {
     events: Vec<SlipEvent>,
@@ -24,7 +25,7 @@ struct Run {
 fn run(case: &Case, sample_every: f64) -> Run {
     let SceneSpec::Block(spec) = &case.scene else { panic!("a block case") };
     let mut block = BlockScene::new(case, spec).unwrap();
-    block.dynamics_mut().track_energy();
+    block.system_mut().track_energy();
     let segments = block.layout().segments.len();
     let mut detector = EventDetector::new(segments, case.slip_rate_threshold(), case.events.merge_within);
     let needs = Needs { segment_state: true, ..Needs::default() };
@@ -52,7 +53,7 @@ fn run(case: &Case, sample_every: f64) -> Run {
     }
     detector.finish();
     let events = detector.events().to_vec();
-    let energy = block.dynamics().energy().unwrap();
+    let energy = block.system().energy().unwrap();
     Run { ruptures: ruptures(&events), events, force, energy }
 }
 
@@ -68,7 +69,7 @@ const EPSILON: f64 = 1e-9;
 
 #[test]
 fn the_paper_case_shows_the_four_observations() {
-    // The events after the first slips (≈ 460 s on) are chaotic (see `slipfront::ensemble`), so
+    // The events after the first slips (≈ 460 s on) are chaotic (see `slipfront::study::ensemble`), so
     // the paper's observations are asserted of the typical member of an ensemble of runs whose
     // initial 1/R* differ by 1e-9: the median member for counts, the pooled mean for 1/R*, the
     // pooled fraction for ruptures. The criteria are those of `Verdict`, fixed on one run before
@@ -263,7 +264,7 @@ fn tsit5_finds_the_first_slips_within_the_error_of_converging_wilson_steps() {
     let onsets = |overrides: &[&str]| -> Vec<(usize, f64)> {
         let mut all = vec!["time.t_end=440"];
         all.extend_from_slice(overrides);
-        let (catalog, _) = slipfront::ensemble::catalog(&load("paper_triangular", &all)).unwrap();
+        let (catalog, _) = slipfront::study::ensemble::catalog(&load("paper_triangular", &all)).unwrap();
         catalog.events.iter().map(|e| (e.segment, e.onset)).collect()
     };
     let tsit5 = onsets(&["time.integrator=tsit5", "time.tolerance=1e-10"]);

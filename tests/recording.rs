@@ -9,15 +9,18 @@ use std::process::Command;
 
 use common::load;
 use slipfront::case::Case;
+use slipfront::catalog::events::Catalog;
+use slipfront::frame::Ending;
+use slipfront::frame::Quantity;
+use slipfront::frame::{Frame, Layout, SegmentSample};
 use slipfront::inspect::check::{Expectations, check};
 use slipfront::inspect::{Recording, rrd};
+use slipfront::record::schema;
+use slipfront::record::schema::RecordingPlan;
 use slipfront::run::{LoopOptions, Outcome, run};
-use slipfront::scene::{self, Frame, Layout, SegmentSample};
-use slipfront::sink::events::Catalog;
-use slipfront::sink::recording::{RerunSink, Viewer, open_stream};
-use slipfront::sink::schema::RecordingPlan;
-use slipfront::sink::schema::{self, Quantity};
-use slipfront::sink::{Ending, Sink, SinkError};
+use slipfront::scene;
+use slipfront::sink::rerun::{RerunSink, Viewer, open_stream};
+use slipfront::sink::{Sink, SinkError};
 
 fn scratch(tag: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("slipfront-rec-{tag}-{}", std::process::id()));
@@ -103,8 +106,8 @@ fn the_schema_is_pinned() {
 struct Frames(std::rc::Rc<std::cell::RefCell<Vec<Frame>>>);
 
 impl Sink for Frames {
-    fn needs(&self) -> slipfront::scene::Needs {
-        slipfront::scene::Needs { segment_state: true, surface_nodes: true, mesh: false }
+    fn needs(&self) -> slipfront::frame::Needs {
+        slipfront::frame::Needs { segment_state: true, surface_nodes: true, mesh: false }
     }
     fn begin(&mut self, _: &Layout) -> Result<(), SinkError> {
         Ok(())

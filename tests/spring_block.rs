@@ -2,8 +2,9 @@
 //! Coulomb limit, and the symmetry of the drive.
 
 use slipfront::case::{self, Case};
-use slipfront::scene::{self, Needs};
-use slipfront::sink::events::EventDetector;
+use slipfront::catalog::events::EventDetector;
+use slipfront::frame::Needs;
+use slipfront::scene;
 
 fn case_with(overrides: &[&str]) -> Case {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/cases/spring_block.toml")).unwrap();
@@ -13,7 +14,7 @@ fn case_with(overrides: &[&str]) -> Case {
 
 /// Runs the scene through the event detector; returns the events and the block's history
 /// `(t, x)` at every step.
-fn run(case: &Case) -> (Vec<slipfront::sink::events::SlipEvent>, Vec<(f64, f64, f64)>) {
+fn run(case: &Case) -> (Vec<slipfront::catalog::events::SlipEvent>, Vec<(f64, f64, f64)>) {
     let mut scene = scene::build(case).unwrap();
     let mut detector = EventDetector::new(1, case.slip_rate_threshold(), case.events.merge_within);
     let mut history = Vec::new();
@@ -188,8 +189,8 @@ fn assert_onset_matches_the_ode(
 }
 
 /// Runs `case` through the library's time loop (adaptive steps included); returns its events.
-fn run_loop(case: &Case) -> Vec<slipfront::sink::events::SlipEvent> {
-    slipfront::ensemble::catalog(case).unwrap().0.events
+fn run_loop(case: &Case) -> Vec<slipfront::catalog::events::SlipEvent> {
+    slipfront::study::ensemble::catalog(case).unwrap().0.events
 }
 
 #[test]
@@ -257,7 +258,7 @@ fn adaptive_steps_converge_to_the_independent_onset_as_the_tolerance_tightens() 
     let mut errors = Vec::new();
     for tolerance in ["1e-5", "1e-6", "1e-7"] {
         let case = case_with(&["time.t_end=800", &format!("time.tolerance={tolerance}")]);
-        let (catalog, _) = slipfront::ensemble::catalog(&case).unwrap();
+        let (catalog, _) = slipfront::study::ensemble::catalog(&case).unwrap();
         let onset = catalog.events.first().expect("a slip before 800 s").onset;
         let relative = (onset - reference).abs() / reference;
         println!("tolerance {tolerance}: onset {onset} s, reference {reference} s, relative {relative:e}");

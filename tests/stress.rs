@@ -15,7 +15,7 @@ use std::time::Instant;
 
 use common::load;
 use slipfront::case::{Case, SceneSpec};
-use slipfront::dynamics::{Dynamics, StepControl};
+use slipfront::dynamics::System;
 use slipfront::scene::block::BlockScene;
 use slipfront::scene::spring_block::SpringBlockScene;
 use slipfront::scene::{RunError, Scene};
@@ -38,17 +38,17 @@ impl Model {
         })
     }
 
-    fn dynamics(&self) -> &Dynamics {
+    fn system(&self) -> &System {
         match self {
-            Model::Block(s) => s.dynamics(),
-            Model::SpringBlock(s) => s.dynamics(),
+            Model::Block(s) => s.system(),
+            Model::SpringBlock(s) => s.system(),
         }
     }
 
-    fn dynamics_mut(&mut self) -> &mut Dynamics {
+    fn system_mut(&mut self) -> &mut System {
         match self {
-            Model::Block(s) => s.dynamics_mut(),
-            Model::SpringBlock(s) => s.dynamics_mut(),
+            Model::Block(s) => s.system_mut(),
+            Model::SpringBlock(s) => s.system_mut(),
         }
     }
 
@@ -82,23 +82,22 @@ fn stress(name: &str, overrides: &[&str]) -> Result<Report, RunError> {
     // Wilson's method keeps an energy ledger; the others do not (`TimeSpec::energy_guard`).
     let ledger = case.time.energy_guard().is_some();
     if ledger {
-        model.dynamics_mut().track_energy();
+        model.system_mut().track_energy();
     }
     let time = &case.time;
-    let mut control =
-        time.adaptive_tolerance().map(|tolerance| StepControl::new(tolerance, time.dt, time.dt_max(), time.dt_min()));
+    let adaptive = time.adaptive_tolerance().is_some();
     let mut ratio = [f64::INFINITY, 0.0_f64];
     let mut structure = [f64::INFINITY, 0.0_f64];
     let steps = time.steps();
     let started = Instant::now();
     let mut k = 0;
     loop {
-        match &mut control {
-            Some(control) if time.t_end - model.scene().time() > 1e-9 * time.dt => {
+        match adaptive {
+            true if time.t_end - model.scene().time() > 1e-9 * time.dt => {
                 let limit = time.t_end - model.scene().time();
-                model.scene().advance_adaptive(control, limit)?;
+                model.scene().advance(limit)?;
             }
-            None if k < steps => {
+            false if k < steps => {
                 let target = if k + 1 == steps { time.t_end } else { (k + 1) as f64 * time.dt };
                 let dt = target - model.scene().time();
                 model.scene().advance(dt)?;
@@ -106,7 +105,7 @@ fn stress(name: &str, overrides: &[&str]) -> Result<Report, RunError> {
             _ => break,
         }
         k += 1;
-        let s = &model.dynamics().state;
+        let s = &model.system().state;
         let fields = s.displacement.iter().chain(&s.velocity).chain(&s.acceleration);
         assert!(fields.clone().all(|x| x.is_finite()), "{name} {overrides:?}: a non-finite field at step {k}");
         for (p, c) in s.contact.iter().enumerate() {
@@ -128,7 +127,7 @@ fn stress(name: &str, overrides: &[&str]) -> Result<Report, RunError> {
             structure = [structure[0].min(c.structure), structure[1].max(c.structure)];
         }
     }
-    let d = model.dynamics();
+    let d = model.system();
     let energy = d.energy().map(|e| {
         let input = (e.work_base + e.work_load).max(f64::MIN_POSITIVE);
         // Without normal traction nothing does work, and nothing may be created.

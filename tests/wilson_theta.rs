@@ -2,9 +2,9 @@
 //! form with a linear jerk, on a single-degree-of-freedom oscillator `ü + ω² u = 0`.
 
 use nalgebra::{Complex, DMatrix};
-use slipfront::dynamics::sparse::SymmetricMatrix;
-use slipfront::dynamics::{ContactBoundary, Dynamics, LinearBody, LinearSolver, WilsonSettings};
+use slipfront::dynamics::{ContactBoundary, LinearBody, LinearSolver, Settings, System, Wilson};
 use slipfront::friction::FrictionParams;
+use slipfront::linalg::sparse::SymmetricMatrix;
 
 const THETA: f64 = 1.4;
 
@@ -29,7 +29,7 @@ fn solver_amplification(omega: f64, linear_solver: LinearSolver) -> DMatrix<f64>
             base_ramp: 0.0,
             loading_direction: 1.0,
         };
-        let settings = WilsonSettings {
+        let settings = Settings {
             theta: THETA,
             tolerance: 1e-14,
             velocity_scale: 1.0,
@@ -37,13 +37,14 @@ fn solver_amplification(omega: f64, linear_solver: LinearSolver) -> DMatrix<f64>
             energy_tolerance: None,
             linear_solver,
         };
-        let mut d = Dynamics::new(body, contact, settings).unwrap();
+        let mut d = System::new(body, contact, settings).unwrap();
+        let mut wilson = Wilson::default();
         let mut unit = [0.0; 3];
         unit[c] = 1.0;
         d.state.displacement[0] = unit[0];
         d.state.velocity[0] = unit[1];
         d.state.acceleration[0] = unit[2];
-        d.step(1.0).unwrap();
+        wilson.step(&mut d, 1.0).unwrap();
         columns.extend([d.state.displacement[0], d.state.velocity[0], d.state.acceleration[0]]);
     }
     DMatrix::from_column_slice(3, 3, &columns)

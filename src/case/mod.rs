@@ -4,6 +4,7 @@
 //! only then is it deserialized and validated, so overrides pass through exactly the same
 //! checks as the file.
 
+pub mod error;
 pub mod overrides;
 pub mod spec;
 
@@ -12,41 +13,9 @@ use std::path::Path;
 
 pub use spec::*;
 
+pub use crate::case::error::CaseError;
+use crate::dynamics::Stepping;
 use crate::validate::{Checker, Violation};
-
-/// Why a case could not be used. Every variant is the user's input (exit code 2).
-#[derive(Debug)]
-pub enum CaseError {
-    /// The file could not be read.
-    Io { path: String, message: String },
-    /// Not TOML, or not the shape of a case (missing, unknown or mistyped keys).
-    Parse(String),
-    /// A `--set` argument is malformed or names no key.
-    Override(String),
-    /// Parsed, but values break rules.
-    Invalid(Vec<Violation>),
-}
-
-impl fmt::Display for CaseError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            CaseError::Io { path, message } => write!(f, "cannot read case file {path}: {message}"),
-            CaseError::Parse(message) => write!(f, "{message}"),
-            CaseError::Override(message) => write!(f, "{message}"),
-            CaseError::Invalid(violations) => {
-                for (i, v) in violations.iter().enumerate() {
-                    if i > 0 {
-                        writeln!(f)?;
-                    }
-                    write!(f, "{v}")?;
-                }
-                Ok(())
-            }
-        }
-    }
-}
-
-impl std::error::Error for CaseError {}
 
 /// Reads, overrides, parses and validates a case file.
 pub fn load(path: &Path, overrides: &[String]) -> Result<Case, CaseError> {
@@ -108,12 +77,10 @@ impl Case {
                 "is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
             );
         }
-        if let (integrator @ (Integrator::Tsit5 | Integrator::Sdirk4 | Integrator::Central), SceneSpec::Point(_)) =
-            (self.time.integrator, &self.scene)
-        {
+        if let (false, SceneSpec::Point(_)) = (self.time.integrator.steps_a_point(), &self.scene) {
             time.fail(
                 "integrator",
-                integrator.name(),
+                self.time.integrator.name(),
                 "is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
             );
         }
@@ -141,9 +108,16 @@ impl Case {
         self.events.slip_rate_threshold.unwrap_or(10.0 * self.scene.driving_velocity())
     }
 
-    /// The integrator of adaptive steps and the slip-rate threshold whose crossings Tsitouras'
-    /// pair locates ([`crate::scene::advance_dynamics_adaptive`]).
-    pub fn stepper(&self) -> (Integrator, f64) {
-        (self.time.integrator, self.slip_rate_threshold())
+    /// How the case steps: its method with the numbers it needs.
+    pub fn stepping(&self) -> Stepping {
+        let time = &self.time;
+        Stepping {
+            method: time.integrator,
+            dt: time.dt,
+            tolerance: time.adaptive_tolerance(),
+            dt_max: time.dt_max(),
+            dt_min: time.dt_min(),
+            slip_rate_threshold: self.slip_rate_threshold(),
+        }
     }
 }

@@ -4,7 +4,7 @@
 //! is a TOML value (`50`, `1e-3`, `"eq4"`, `[1, 2]`); a bare word that is not TOML is taken
 //! as a string, so `friction.rstar_law=eq4` works too.
 
-use super::CaseError;
+use crate::case::error::CaseError;
 
 /// Applies one `KEY=VALUE` override to `table`.
 pub fn apply(table: &mut toml::Table, item: &str) -> Result<(), CaseError> {

@@ -2,8 +2,9 @@
 
 use serde::Deserialize;
 
+use crate::dynamics::method::{MAX_STEPS, Method};
+use crate::frame::Quantity;
 use crate::friction::FrictionParams;
-use crate::sink::schema::Quantity;
 use crate::validate::Checker;
 
 /// A whole case.
@@ -45,66 +46,18 @@ pub struct TimeSpec {
     pub energy_tolerance: f64,
     /// Local error per second of simulated time (1/s) of adaptive stepping by step doubling;
     /// unset (the default): fixed steps of `dt`. When set, `dt` is the first step. See
-    /// [`crate::dynamics::adaptive`]. With `integrator = "tsit5"`: its local error per step
-    /// ([`TSIT5_DEFAULT_TOLERANCE`] by default).
+    /// [`crate::dynamics::step_doubling`]. With the Runge–Kutta methods: their local error per
+    /// step ([`crate::dynamics::method`] has their defaults).
     #[serde(default)]
     pub tolerance: Option<f64>,
     /// Largest adaptive step (s); `t_end / 100` by default.
     #[serde(default)]
     pub dt_max: Option<f64>,
-    /// The time integrator of dynamic scenes: Wilson's θ method (the paper's, by default),
-    /// Tsitouras' explicit Runge–Kutta 5(4) pair on the rate form, or explicit central
-    /// differences.
+    /// The time integrator of dynamic scenes ([`Method`]): Wilson's θ method (the paper's, by
+    /// default), Tsitouras' 5(4) pair or SDIRK 4(3) on the rate form, or central differences.
     #[serde(default)]
-    pub integrator: Integrator,
+    pub integrator: Method,
 }
-
-/// `time.integrator`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Integrator {
-    /// Wilson's θ method with the implicit friction update (the paper's §2.2): fixed steps of
-    /// `dt`, or adaptive by step doubling when `tolerance` is set.
-    #[default]
-    Wilson,
-    /// Tsitouras' 5(4) pair on the rate equations (4)-(6), (14), always adaptive, with the
-    /// instants where a contact point's slip rate crosses the event threshold located
-    /// ([`crate::dynamics::runge_kutta`]). `tolerance` is its local error per step.
-    Tsit5,
-    /// Hairer and Wanner's L-stable SDIRK 4(3) on the same rate equations, always adaptive,
-    /// crossings located as for `Tsit5` ([`crate::dynamics::sdirk`]). `tolerance` is its local
-    /// error per step.
-    Sdirk4,
-    /// Explicit central differences for the body with the implicit friction update of each
-    /// step ([`crate::dynamics::central`]): frames every `dt`, each taken in the fewest equal
-    /// sub-steps the stability limit allows. No `tolerance`.
-    Central,
-}
-
-impl Integrator {
-    /// The case file's name for it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Integrator::Wilson => "wilson",
-            Integrator::Tsit5 => "tsit5",
-            Integrator::Sdirk4 => "sdirk4",
-            Integrator::Central => "central",
-        }
-    }
-}
-
-/// Local error per step of `tsit5` when `time.tolerance` is not given.
-pub const TSIT5_DEFAULT_TOLERANCE: f64 = 1e-8;
-
-/// Local error per step of `sdirk4` when `time.tolerance` is not given.
-pub const SDIRK4_DEFAULT_TOLERANCE: f64 = 1e-7;
-
-/// The smallest local error per step that `sdirk4` is let hold. Its stages are recovered as
-/// `(Y - known)/(hγ)`, whose rounding grows as the step shrinks, and through a slip the error
-/// estimate stops falling with the step: the spring block fails at 1e-13 (796 s) and the paper
-/// case at 1e-12 (776 s), each with a step below the smallest allowed; both run their 1000 s at
-/// 1e-11.
-pub const SDIRK4_SMALLEST_TOLERANCE: f64 = 1e-11;
 
 fn default_theta() -> f64 {
     1.4
@@ -113,9 +66,6 @@ fn default_theta() -> f64 {
 fn default_energy_tolerance() -> f64 {
     0.01
 }
-
-/// Most steps a run may take, to refuse a typo such as `dt = 1e-12` before it starts.
-pub const MAX_STEPS: f64 = 1e9;
 
 impl TimeSpec {
     pub fn check(&self, c: &mut Checker<'_>) {
@@ -130,36 +80,27 @@ impl TimeSpec {
         }
         c.positive("energy_tolerance", self.energy_tolerance);
         // Central differences take no tolerance at all: that is the one error worth giving.
-        if let Some(tolerance) = self.tolerance
-            && self.integrator != Integrator::Central
-            && c.finite("tolerance", tolerance)
-        {
-            let (smallest, meaning) = match self.integrator {
-                Integrator::Wilson => (None, "a relative local error per second, 1/s".to_string()),
-                Integrator::Sdirk4 => (
-                    Some(SDIRK4_SMALLEST_TOLERANCE),
-                    "a relative local error per step of sdirk4; below that, rounding in its stages \
-                     can exceed it through the slips"
-                        .to_string(),
+        if let Some(tolerance) = self.tolerance {
+            match self.integrator.tolerance_rule() {
+                Some(rule) if c.finite("tolerance", tolerance) => {
+                    let above = rule.smallest.map_or(tolerance > 0.0, |smallest| tolerance >= smallest);
+                    if !(above && tolerance <= rule.largest) {
+                        let from = rule.smallest.map_or("(0".to_string(), |smallest| format!("[{smallest:e}"));
+                        c.fail("tolerance", tolerance, format!("must lie in {from}, {}] ({})", rule.largest, rule.meaning));
+                    }
+                }
+                Some(_) => {}
+                None => c.fail(
+                    "tolerance",
+                    tolerance,
+                    format!(
+                        "does not apply to {} = \"{}\", which takes fixed frames of {} sub-stepped to its stability limit",
+                        c.key("integrator"),
+                        self.integrator.name(),
+                        c.key("dt")
+                    ),
                 ),
-                other => (None, format!("a relative local error per step of {}", other.name())),
-            };
-            let above = smallest.map_or(tolerance > 0.0, |smallest| tolerance >= smallest);
-            if !(above && tolerance <= 0.1) {
-                let from = smallest.map_or("(0".to_string(), |smallest| format!("[{smallest:e}"));
-                c.fail("tolerance", tolerance, format!("must lie in {from}, 0.1] ({meaning})"));
             }
-        }
-        if let (Some(tolerance), Integrator::Central) = (self.tolerance, self.integrator) {
-            c.fail(
-                "tolerance",
-                tolerance,
-                format!(
-                    "does not apply to {} = \"central\", which takes fixed frames of {} sub-stepped to its stability limit",
-                    c.key("integrator"),
-                    c.key("dt")
-                ),
-            );
         }
         if let Some(dt_max) = self.dt_max {
             if self.adaptive_tolerance().is_none() {
@@ -186,34 +127,15 @@ impl TimeSpec {
         }
     }
 
-    /// The tolerance of adaptive stepping, if steps are adaptive: `tolerance`, or for `tsit5`
-    /// (always adaptive) its default.
+    /// The tolerance of adaptive stepping, if steps are adaptive ([`Method::adaptive_tolerance`]).
     pub fn adaptive_tolerance(&self) -> Option<f64> {
-        match self.integrator {
-            Integrator::Wilson => self.tolerance,
-            Integrator::Tsit5 => Some(self.tolerance.unwrap_or(TSIT5_DEFAULT_TOLERANCE)),
-            Integrator::Sdirk4 => Some(self.tolerance.unwrap_or(SDIRK4_DEFAULT_TOLERANCE)),
-            Integrator::Central => None,
-        }
+        self.integrator.adaptive_tolerance(self.tolerance)
     }
 
-    /// The energy guard's share (`energy_tolerance`) where the integrator keeps an energy
-    /// ledger: Wilson's method does; Tsitouras' pair does not, its error control bounds its
-    /// steps; nor do central differences, which conserve energy up to their truncation error.
+    /// The energy guard's share (`energy_tolerance`) where the method keeps an energy ledger
+    /// ([`Method::guards_energy`]).
     pub fn energy_guard(&self) -> Option<f64> {
-        (self.integrator == Integrator::Wilson).then_some(self.energy_tolerance)
-    }
-
-    /// Whether the integrator reports each point's plastic slip rate `Λ` at the end of a step
-    /// (Tsitouras' pair) rather than the step's mean `Δp/Δt` (Wilson's method).
-    pub fn instantaneous_slip_rate(&self) -> bool {
-        matches!(self.integrator, Integrator::Tsit5 | Integrator::Sdirk4)
-    }
-
-    /// Whether every step is one of Wilson's method of `dt`: the only stepping for which a
-    /// large body is condensed onto its contact ([`crate::dynamics::condensed`]).
-    pub fn fixed_implicit_steps(&self) -> bool {
-        self.integrator == Integrator::Wilson && self.tolerance.is_none()
+        self.integrator.guards_energy().then_some(self.energy_tolerance)
     }
 
     /// Largest adaptive step (s).
@@ -221,15 +143,9 @@ impl TimeSpec {
         self.dt_max.unwrap_or(self.t_end / 100.0)
     }
 
-    /// Smallest adaptive step (s): below this a run stops rather than crawl. Tsitouras' pair
-    /// may go down to a few roundings of the time itself (4 ulp of `t_end`): it walks through
-    /// the logarithmic singularity of `Λ` where a traction changes sign (`R → 0` in the `-ln R`
-    /// of eq. 5's denominator) with steps that grow geometrically from picoseconds.
+    /// Smallest adaptive step (s) ([`Method::dt_min`]).
     pub fn dt_min(&self) -> f64 {
-        match self.integrator {
-            Integrator::Wilson | Integrator::Central => self.t_end / MAX_STEPS,
-            Integrator::Tsit5 | Integrator::Sdirk4 => 4.0 * f64::EPSILON * self.t_end,
-        }
+        self.integrator.dt_min(self.t_end)
     }
 
     /// Number of steps: `t_end/dt` rounded up; the last step is shortened to end at `t_end`.

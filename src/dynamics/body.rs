@@ -1,6 +1,6 @@
 //! The linear part of the equation of motion (14): lumped mass, stiffness, external load rate.
 
-use super::sparse::SymmetricMatrix;
+use crate::linalg::sparse::SymmetricMatrix;
 
 /// `M a + K u = f⁰(t) + f_c`, with `M` diagonal (lumped) and `f⁰` growing linearly in time.
 /// Degrees of freedom with prescribed zero displacement (the fixed top) are not stored.

@@ -1,6 +1,6 @@
 //! Explicit central differences for the body, with the implicit friction update of each step.
 //!
-//! Wilson's θ method ([`super::wilson`]) solves a system of the whole body per step; on a fine
+//! Wilson's θ method ([`crate::dynamics::wilson`]) solves a system of the whole body per step; on a fine
 //! mesh that solve is most of the cost (a 1000 × 100 block: two sparse triangular solves with
 //! a factor of 200 000 unknowns, about 0.15 s a step). Dynamic rupture codes integrate the body
 //! explicitly instead, with a diagonal (lumped) mass, so that a step costs one product with `K`
@@ -30,11 +30,15 @@
 
 use rayon::prelude::*;
 
-use super::body::LinearBody;
-use super::contact::ContactBoundary;
-use super::templates::TemplateMatrix;
-use super::wilson::{Dynamics, MAX_HALVINGS, StepError};
+use crate::dynamics::body::LinearBody;
+use crate::dynamics::contact::ContactBoundary;
+use crate::dynamics::control::AdaptiveError;
+use crate::dynamics::error::{MAX_HALVINGS, StepError};
+use crate::dynamics::integrator::Integrator;
+use crate::dynamics::state::State;
+use crate::dynamics::system::System;
 use crate::friction::{ContactState, FrictionError, FrictionParams, Restart, Update, update_from};
+use crate::linalg::stencil::TemplateMatrix;
 
 /// Share of the stability limit `2/ω_max` that the sub-steps use: it covers Lanczos'
 /// estimate, which approaches `ω_max` from below (see [`highest_frequency`]).
@@ -44,7 +48,7 @@ pub const STABILITY_SHARE: f64 = 0.9;
 const LANCZOS_STEPS: usize = 100;
 
 /// What central differences keep between steps.
-pub(crate) struct CentralDifference {
+pub struct CentralDifference {
     /// The highest angular frequency of the body with elastic contact springs (rad/s).
     omega_max: f64,
     /// `K` by runs of equal node stencils, where the body has node pairs; else its compressed
@@ -75,7 +79,7 @@ pub(crate) struct CentralDifference {
 }
 
 impl CentralDifference {
-    pub(crate) fn new(body: &LinearBody, contact: &ContactBoundary, displacement: &[f64]) -> Self {
+    fn new(body: &LinearBody, contact: &ContactBoundary, displacement: &[f64]) -> Self {
         let mut contact_dofs: Vec<usize> = contact.points.iter().flat_map(|p| p.dofs).collect();
         contact_dofs.sort_unstable();
         contact_dofs.dedup();
@@ -101,7 +105,7 @@ impl CentralDifference {
     }
 
     /// The largest sub-step taken (s).
-    pub(crate) fn stable_step(&self) -> f64 {
+    pub fn stable_step(&self) -> f64 {
         2.0 * STABILITY_SHARE / self.omega_max
     }
 }
@@ -158,51 +162,48 @@ pub fn highest_frequency(body: &LinearBody, contact: &ContactBoundary) -> f64 {
     largest.sqrt()
 }
 
-impl Dynamics {
-    /// Uses central differences from now on ([`super::central`]).
-    pub fn use_central_differences(&mut self) {
-        self.central = Some(CentralDifference::new(&self.body, &self.contact, &self.state.displacement));
-    }
-
-    /// The largest sub-step of central differences (s), if they are in use.
-    pub fn stable_step(&self) -> Option<f64> {
-        self.central.as_ref().map(CentralDifference::stable_step)
+impl CentralDifference {
+    /// Central differences for `system`, from its current state.
+    pub fn for_system(system: &System) -> Self {
+        Self::new(&system.body, &system.contact, &system.state.displacement)
     }
 
     /// Advances by `dt` in the fewest equal sub-steps of at most [`CentralDifference::stable_step`],
     /// reported as one step: `plastic_increment` holds the slip of all of them.
-    pub(super) fn central_step(&mut self, dt: f64) -> Result<(), StepError> {
-        let mut central = self.central.take().expect("central differences are in use");
-        let result = self.central_substeps(&mut central, dt);
-        self.central = Some(central);
-        result
-    }
-
-    fn central_substeps(&mut self, central: &mut CentralDifference, dt: f64) -> Result<(), StepError> {
-        let substeps = (dt / central.stable_step()).ceil().max(1.0) as u64;
+    pub fn step(&mut self, system: &mut System, dt: f64) -> Result<(), StepError> {
+        let substeps = (dt / self.stable_step()).ceil().max(1.0) as u64;
         let h = dt / substeps as f64;
-        let start = self.state.time;
-        self.state.plastic_increment.iter_mut().for_each(|p| *p = 0.0);
+        let start = system.state.time;
+        system.state.plastic_increment.iter_mut().for_each(|p| *p = 0.0);
         for i in 0..substeps {
-            self.central_substep(central, start + i as f64 * h, h)?;
+            self.substep(system, start + i as f64 * h, h)?;
         }
-        if self.state.velocity.iter().chain(&self.state.displacement).any(|x| !x.is_finite()) {
+        let s = &mut system.state;
+        if s.velocity.iter().chain(&s.displacement).any(|x| !x.is_finite()) {
             return Err(StepError::NonFinite);
         }
-        self.state.time = start + dt;
-        self.state.step += 1;
+        s.time = start + dt;
+        s.step += 1;
         Ok(())
     }
 
-    /// One sub-step of `h` from `time`.
-    fn central_substep(&mut self, central: &mut CentralDifference, time: f64, h: f64) -> Result<(), StepError> {
-        let s = &mut self.state;
-        let chunk = central.chunk;
+    /// One sub-step of `h` from `time`: half kick and drift, the contact's update over the
+    /// drift, and the second half kick with the new forces.
+    fn substep(&mut self, system: &mut System, time: f64, h: f64) -> Result<(), StepError> {
+        self.drift(&mut system.state, h);
+        self.update_contact(system, time, h)?;
+        self.kick(system, time + h, h);
+        Ok(())
+    }
+
+    /// `v += h/2 a`, `u += h v`, and the swapped copy of `u` the stencil product reads.
+    fn drift(&mut self, s: &mut State, h: f64) {
+        let chunk = self.chunk;
         s.displacement
             .par_chunks_mut(chunk)
             .zip(s.velocity.par_chunks_mut(chunk))
             .zip(s.acceleration.par_chunks(chunk))
-            .zip(central.swapped.par_chunks_mut(chunk))
+            .zip(self.swapped.par_chunks_mut(chunk))
             .for_each(|(((displacement, velocity), acceleration), swapped)| {
                 for ((u, v), a) in displacement.iter_mut().zip(velocity.iter_mut()).zip(acceleration) {
                     *v += 0.5 * h * a;
@@ -210,44 +211,55 @@ impl Dynamics {
                 }
                 TemplateMatrix::swap_pairs(displacement, swapped);
             });
-        let base = self.contact.base_displacement_at(time + h) - self.contact.base_displacement_at(time);
-        let (params, points, displacement) = (&self.contact.params, &self.contact.points, &s.displacement);
-        central
-            .updates
+    }
+
+    /// Every contact point's implicit friction update over the sub-step (eq. 13), and the
+    /// contact forces `f_c - f_c(0)` they exert.
+    fn update_contact(&mut self, system: &mut System, time: f64, h: f64) -> Result<(), StepError> {
+        let s = &mut system.state;
+        let contact = &system.contact;
+        let base = contact.base_displacement_at(time + h) - contact.base_displacement_at(time);
+        let (params, points, displacement) = (&contact.params, &contact.points, &s.displacement);
+        self.updates
             .par_iter_mut()
             .zip(s.contact.par_iter())
-            .zip(central.restarts.par_iter())
-            .zip(central.contact_displacement.par_iter_mut())
+            .zip(self.restarts.par_iter())
+            .zip(self.contact_displacement.par_iter_mut())
             .enumerate()
-            .with_min_len(central.point_chunk)
+            .with_min_len(self.point_chunk)
             .for_each(|(k, (((update, state), &restart), previous))| {
                 let now = points[k].interpolate(displacement);
                 let slip = now - *previous - base;
                 *previous = now;
                 *update = update_in_halves(params, state, slip, h, restart, 0);
             });
-        for &dof in &central.contact_dofs {
-            central.contact_force[dof] = -self.initial_contact_force[dof];
+        for &dof in &self.contact_dofs {
+            self.contact_force[dof] = -system.initial_contact_force[dof];
         }
         for (k, point) in points.iter().enumerate() {
-            let updated = match &central.updates[k] {
+            let updated = match &self.updates[k] {
                 Ok(updated) => *updated,
                 Err(error) => return Err(StepError::Friction { point: k, state: s.contact[k], error: error.clone() }),
             };
             s.contact[k] = updated.state;
             s.plastic_increment[k] += updated.plastic_increment;
-            central.restarts[k] = updated.restart;
-            point.scatter(point.weight * updated.state.traction_t, &mut central.contact_force);
+            self.restarts[k] = updated.restart;
+            point.scatter(point.weight * updated.state.traction_t, &mut self.contact_force);
         }
-        // a = M⁻¹ (f⁰ - K u + f_c - f_c(0)), by chunks of nodes: K u of the chunk, then the rest.
-        let t = time + h;
-        let (body, displacement) = (&self.body, &s.displacement);
-        let mut stiffness_buffer = std::mem::take(&mut central.stiffness_force);
-        let mut tasks = Vec::with_capacity(central.chunks.len());
+        Ok(())
+    }
+
+    /// `a = M⁻¹ (f⁰ - K u + f_c - f_c(0))` at `t`, by chunks of nodes (`K u` of the chunk,
+    /// then the rest), and `v += h/2 a`.
+    fn kick(&mut self, system: &mut System, t: f64, h: f64) {
+        let s = &mut system.state;
+        let (body, displacement) = (&system.body, &s.displacement);
+        let mut stiffness_buffer = std::mem::take(&mut self.stiffness_force);
+        let mut tasks = Vec::with_capacity(self.chunks.len());
         let (mut acceleration, mut velocity, mut stiffness_force) =
             (&mut s.acceleration[..], &mut s.velocity[..], &mut stiffness_buffer[..]);
         let mut first = 0;
-        for &(begin, end, nodes) in &central.chunks {
+        for &(begin, end, nodes) in &self.chunks {
             let rows = 2 * nodes;
             let (a, a_rest) = std::mem::take(&mut acceleration).split_at_mut(rows);
             let (v, v_rest) = std::mem::take(&mut velocity).split_at_mut(rows);
@@ -256,7 +268,7 @@ impl Dynamics {
             (acceleration, velocity, stiffness_force) = (a_rest, v_rest, k_rest);
             first += rows;
         }
-        let shared = &*central;
+        let shared = &*self;
         let kick = |first: usize, acceleration: &mut [f64], velocity: &mut [f64], stiffness_force: &[f64]| {
             for (i, ((a, v), ku)) in acceleration.iter_mut().zip(velocity.iter_mut()).zip(stiffness_force).enumerate() {
                 let r = first + i;
@@ -274,8 +286,17 @@ impl Dynamics {
                 kick(0, acceleration, velocity, stiffness_force);
             }
         }
-        central.stiffness_force = stiffness_buffer;
-        Ok(())
+        self.stiffness_force = stiffness_buffer;
+    }
+}
+
+impl Integrator for CentralDifference {
+    fn advance(&mut self, system: &mut System, limit: f64) -> Result<f64, AdaptiveError> {
+        self.step(system, limit).map(|()| limit).map_err(AdaptiveError::Step)
+    }
+
+    fn stable_step(&self) -> Option<f64> {
+        Some(CentralDifference::stable_step(self))
     }
 }
 

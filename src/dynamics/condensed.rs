@@ -26,9 +26,9 @@
 use faer::Mat;
 use faer::linalg::solvers::{PartialPivLu, Solve};
 
-use super::body::LinearBody;
-use super::contact::ContactPoint;
-use super::sparse::{Cholesky, FactorError, SymmetricMatrix};
+use crate::dynamics::body::LinearBody;
+use crate::dynamics::contact::ContactPoint;
+use crate::linalg::sparse::{Cholesky, FactorError, SymmetricMatrix};
 
 /// Right-hand sides solved together while computing `G` (memory: `n` values each).
 const BLOCK: usize = 64;

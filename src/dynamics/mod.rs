@@ -1,19 +1,35 @@
 //! Time integration of a linear elastic body with a frictional contact boundary (paper §2.2).
+//!
+//! The assembled model is a [`System`] (body, contact, [`State`], energy ledger). Every method
+//! implements [`Integrator`]; [`Method`] holds the rules of which one a case gets and builds
+//! it through [`Stepping`].
 
-pub mod adaptive;
 pub mod body;
 pub mod central;
 pub mod condensed;
 pub mod contact;
+pub mod control;
+pub mod energy;
+pub mod error;
+pub mod integrator;
+pub mod method;
 mod newton;
 mod operator;
-pub mod runge_kutta;
-pub mod sdirk;
-pub mod sparse;
-pub mod templates;
+pub mod rate_form;
+pub mod settings;
+pub mod state;
+pub mod step_doubling;
+pub mod system;
 pub mod wilson;
 
-pub use adaptive::{AdaptiveError, StepControl};
 pub use body::LinearBody;
 pub use contact::{ContactBoundary, ContactPoint};
-pub use wilson::{Dynamics, EnergyLedger, LinearSolver, State, StepError, WilsonSettings, condensation_pays};
+pub use control::{AdaptiveError, StepControl};
+pub use energy::EnergyLedger;
+pub use error::StepError;
+pub use integrator::{Integrator, Statistics};
+pub use method::{Method, Stepping};
+pub use settings::{LinearSolver, Settings, condensation_pays};
+pub use state::State;
+pub use system::System;
+pub use wilson::Wilson;

@@ -1,7 +1,8 @@
 //! Newton's method with backtracking for one step's nonlinear system, shared by the full and the
-//! condensed linear solvers ([`super::LinearSolver`]).
+//! condensed linear solvers ([`crate::dynamics::LinearSolver`]).
 
-use super::wilson::{StepError, WilsonSettings};
+use crate::dynamics::error::StepError;
+use crate::dynamics::settings::Settings;
 
 /// One step's nonlinear system as Newton's method sees it: a residual at a trial, and the
 /// correction that zeroes its linearization.
@@ -37,7 +38,7 @@ pub(crate) struct Converged<E> {
 /// the residual's norm is halved, down to 1/64, so that stick/slip switches cannot make it grow.
 pub(crate) fn newton<P: NewtonProblem>(
     problem: &mut P,
-    settings: &WilsonSettings,
+    settings: &Settings,
     scale: f64,
     mut x: Vec<f64>,
 ) -> Result<Converged<P::Evaluation>, StepError> {

@@ -1,15 +1,15 @@
 //! Newton's operator of the implicit integrators, `c₀ M + K + K_c`, assembled in one sparse
 //! pattern and factored.
 //!
-//! Wilson's step (`c₀ = 6/τ²`, [`super::wilson`]) and the SDIRK stages (`c₀ = 1/(hγ)²`,
-//! [`super::sdirk`]) both solve with it. `K_c = -Σ w Ñᵀ (∂f_t/∂ū) Ñ` is eq. (14)'s contact
-//! tangent. The explicit integrators never need it, so [`super::Dynamics`] builds it at its
+//! Wilson's step (`c₀ = 6/τ²`, [`crate::dynamics::wilson`]) and the SDIRK stages (`c₀ = 1/(hγ)²`,
+//! [`crate::dynamics::sdirk`]) both solve with it. `K_c = -Σ w Ñᵀ (∂f_t/∂ū) Ñ` is eq. (14)'s contact
+//! tangent. The explicit integrators never need it, so [`crate::dynamics::Dynamics`] builds it at its
 //! first use: on a fine mesh the pattern is as large as `K`'s, and its symbolic analysis takes
 //! as long as the rest of the set-up.
 
-use super::body::LinearBody;
-use super::contact::ContactBoundary;
-use super::sparse::{Cholesky, FactorError, SymmetricMatrix};
+use crate::dynamics::body::LinearBody;
+use crate::dynamics::contact::ContactBoundary;
+use crate::linalg::sparse::{Cholesky, FactorError, SymmetricMatrix};
 
 /// `c₀ M + K + K_c`: its pattern, where each part's entries go in it, and its factorization.
 pub(super) struct Operator {

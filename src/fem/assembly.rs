@@ -2,11 +2,11 @@
 
 use nalgebra::Vector2;
 
-use super::element::{GAUSS_2, PlaneStrain, lumped_mass, stiffness};
-use super::mesh::StructuredMesh;
-use crate::dynamics::sparse::SymmetricMatrix;
 use crate::dynamics::{ContactBoundary, ContactPoint, LinearBody};
+use crate::fem::element::{GAUSS_2, PlaneStrain, lumped_mass, stiffness};
+use crate::fem::mesh::StructuredMesh;
 use crate::friction::FrictionParams;
+use crate::linalg::sparse::SymmetricMatrix;
 
 /// The assembled block: the linear body and its frictional bottom.
 #[derive(Debug, Clone)]

@@ -6,8 +6,8 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-use super::params::FrictionParams;
-use super::state::ContactState;
+use crate::friction::params::FrictionParams;
+use crate::friction::state::ContactState;
 
 /// Normal sliding-yield surface, eq. (1): `f_t/f_n - μ_k`.
 pub fn normal_yield_surface(params: &FrictionParams, traction_t: f64, traction_n: f64) -> f64 {

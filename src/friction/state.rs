@@ -1,6 +1,6 @@
 //! The state a contact point carries between steps.
 
-use super::params::FrictionParams;
+use crate::friction::params::FrictionParams;
 
 /// State of one contact (Gauss) point.
 ///

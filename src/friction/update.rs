@@ -9,7 +9,7 @@
 //!   `z₁ = z₀ - γκ Δp [(z₀-1)^m + (z₁-1)^m]/2 + γξ Δt [(1-a z₀)^n + (1-a z₁)^n]/2`, `a = μ_k/μ_s`,
 //!   implicit in `z₁` (the decay term is integrated in `p`, the healing term in `t`).
 //! * Normal sliding ratio: `Ṙ = -r ln(R) Λ` integrated exactly, `Ψ(R₁) = Ψ(R₀) + r Δp`
-//!   (see [`super::expint`]).
+//!   (see [`crate::friction::expint`]).
 //! * Consistency: the subloading surface passes through the new traction,
 //!   `|f_{n+1}| = R₁ μ_k f_n z₁` (eq. 3). This scalar equation is solved by safeguarded Newton
 //!   in `v = ln(-ln R₁)`, where `Ψ(R₁)` and so `Δp` are explicit (no inverse of `E1`), and `Δp`
@@ -23,10 +23,10 @@
 
 use std::fmt;
 
-use super::expint::{psi, psi_at_ln_u};
-use super::law::{decay, decay_slope, healing, healing_slope};
-use super::params::FrictionParams;
-use super::state::ContactState;
+use crate::friction::expint::{psi, psi_at_ln_u};
+use crate::friction::law::{decay, decay_slope, healing, healing_slope};
+use crate::friction::params::FrictionParams;
+use crate::friction::state::ContactState;
 
 /// Relative slack allowed at the bounds of `R` and `1/R*` for rounding only.
 const ROUNDING: f64 = 1e-12;

@@ -12,9 +12,9 @@ use std::path::Path;
 
 use serde::Deserialize;
 
-use super::Recording;
-use crate::scene::SceneKind;
-use crate::sink::schema::{self, RunEnding, RunInfo};
+use crate::frame::SceneKind;
+use crate::inspect::Recording;
+use crate::record::schema::{self, RunEnding, RunInfo};
 
 /// Optional expectations (`--expect EXPECT.toml`).
 ///
@@ -135,7 +135,7 @@ pub fn check(recording: &Recording, expect: &Expectations) -> Report {
     }
 
     // Every listed series, with the same rows, sim_time rising with step, finite values.
-    let mut reference: Option<(&str, &super::Series)> = None;
+    let mut reference: Option<(&str, &crate::inspect::Series)> = None;
     let mut non_finite = 0usize;
     for path in &info.series {
         let Some(series) = recording.series.get(path) else {

@@ -2,6 +2,7 @@
 
 pub mod check;
 pub mod framing;
+pub mod mcap;
 pub mod rrd;
 
 use std::collections::{BTreeMap, BTreeSet};

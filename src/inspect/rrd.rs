@@ -8,9 +8,9 @@ use rerun::external::re_log_encoding::DecoderApp;
 use rerun::log::{Chunk, LogMsg};
 use rerun::{ComponentIdentifier, TimelineName};
 
-use super::framing::{self, Plausible};
-use super::{ReadError, Recording, View};
-use crate::sink::schema;
+use crate::inspect::framing::{self, Plausible};
+use crate::inspect::{ReadError, Recording, View};
+use crate::record::schema;
 
 /// Decodes every message of `path`. A file that ends mid-message (a run killed while writing)
 /// yields what came before, with [`Recording::problem`] saying where it stopped.

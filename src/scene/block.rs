@@ -1,13 +1,13 @@
 //! `kind = "block"`: the paper's §3 analysis, a plane-strain elastic block whose bottom is the
 //! frictional contact against a moving rigid base.
 
-use super::{
-    Frame, Layout, Needs, NodeInfo, RunError, Scene, SceneKind, SegmentInfo, advance_dynamics,
-    advance_dynamics_adaptive, dynamics_for, segment_sample,
-};
-use crate::case::{BlockSpec, Case, Integrator};
-use crate::dynamics::{Dynamics, LinearSolver, StepControl, WilsonSettings, condensation_pays};
+use crate::case::{BlockSpec, Case};
+use crate::dynamics::{LinearSolver, Settings, System, condensation_pays};
 use crate::fem::{Block, PlaneStrain, StructuredMesh, assemble};
+use crate::frame::{Frame, Layout, Needs, NodeInfo, SceneKind, SegmentInfo};
+use crate::scene::dynamic::{DynamicScene, Shape};
+use crate::scene::interface::{RunError, step_error};
+use crate::scene::sample::segment_sample;
 
 /// Peak memory (bytes) a block of `nx × ny` elements is expected to need: a base of 16 MB plus
 /// 200 B × log2(n) per degree of freedom `n = 2 (nx+1)(ny+1)`, the sparse factor's fill growing
@@ -23,13 +23,14 @@ pub fn estimated_memory(nx: usize, ny: usize) -> (f64, f64) {
     (dofs, 16.0e6 + 200.0 * dofs * dofs.log2() + condensed)
 }
 
-pub struct BlockScene {
-    dynamics: Dynamics,
+/// How the block's contact points form segments (two Gauss points each), and what a frame
+/// shows of it: segments, the contact surface's nodes and the whole mesh.
+pub struct BlockShape {
     mesh: StructuredMesh,
-    layout: Layout,
-    /// The adaptive integrator and the slip-rate threshold whose crossings it locates.
-    stepper: (Integrator, f64),
 }
+
+/// The paper's block.
+pub type BlockScene = DynamicScene<BlockShape>;
 
 impl BlockScene {
     pub fn new(case: &Case, spec: &BlockSpec) -> Result<Self, RunError> {
@@ -46,86 +47,69 @@ impl BlockScene {
         );
         // A large body at a fixed step is condensed onto its contact; adaptive steps change τ
         // every attempt, and each new τ would need the body refactored.
-        let linear_solver = if condensation_pays(body.dofs(), spec.nx + 1) && case.time.fixed_implicit_steps() {
+        let fixed = case.time.integrator.fixed_implicit_steps(case.time.tolerance);
+        let linear_solver = if condensation_pays(body.dofs(), spec.nx + 1) && fixed {
             LinearSolver::Condensed
         } else {
             LinearSolver::Full
         };
-        let settings = WilsonSettings {
+        let settings = Settings {
             theta: case.time.theta,
             velocity_scale: spec.base_velocity.abs().max(f64::MIN_POSITIVE),
             energy_tolerance: case.time.energy_guard(),
             linear_solver,
-            ..WilsonSettings::default()
+            ..Settings::default()
         };
-        let dynamics = dynamics_for(case, body, contact, settings, |p| p / 2)?;
-        let name_of = |probes: &[crate::case::Probe], index: usize| {
-            probes.iter().find(|p| p.index == index).map(|p| p.name.clone())
-        };
-        let dx = mesh.dx();
-        let layout = Layout {
-            kind: SceneKind::Block,
-            segments: (0..mesh.nx)
-                .map(|k| SegmentInfo {
-                    left: k as f64 * dx,
-                    right: (k + 1) as f64 * dx,
-                    name: name_of(&case.probes.segments, k),
-                })
-                .collect(),
-            surface_nodes: (0..=mesh.nx)
-                .map(|i| NodeInfo { x: i as f64 * dx, name: name_of(&case.probes.nodes, i) })
-                .collect(),
-            mesh: Some(mesh),
-            driving_velocity: spec.base_velocity.abs(),
-            instantaneous_slip_rate: case.time.instantaneous_slip_rate(),
-        };
-        let stepper = case.stepper();
-        Ok(Self { dynamics, mesh, layout, stepper })
+        let shape = BlockShape { mesh };
+        let system = System::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |p| p / 2))?;
+        Ok(DynamicScene::assemble(case, system, layout(case, spec, mesh), shape))
     }
+}
 
-    /// The integrator, for tests that inspect it.
-    pub fn dynamics(&self) -> &Dynamics {
-        &self.dynamics
+/// The block's segments and surface nodes, named by the case's probes.
+fn layout(case: &Case, spec: &BlockSpec, mesh: StructuredMesh) -> Layout {
+    let name_of =
+        |probes: &[crate::case::Probe], index: usize| probes.iter().find(|p| p.index == index).map(|p| p.name.clone());
+    let dx = mesh.dx();
+    Layout {
+        kind: SceneKind::Block,
+        segments: (0..mesh.nx)
+            .map(|k| SegmentInfo {
+                left: k as f64 * dx,
+                right: (k + 1) as f64 * dx,
+                name: name_of(&case.probes.segments, k),
+            })
+            .collect(),
+        surface_nodes: (0..=mesh.nx)
+            .map(|i| NodeInfo { x: i as f64 * dx, name: name_of(&case.probes.nodes, i) })
+            .collect(),
+        mesh: Some(mesh),
+        driving_velocity: spec.base_velocity.abs(),
+        instantaneous_slip_rate: case.time.integrator.instantaneous_slip_rate(),
     }
+}
 
-    /// Mutable integrator, for tests that set initial conditions.
-    pub fn dynamics_mut(&mut self) -> &mut Dynamics {
-        &mut self.dynamics
-    }
-
-    fn node_displacement(&self, id: usize) -> [f64; 2] {
+impl BlockShape {
+    fn node_displacement(&self, system: &System, id: usize) -> [f64; 2] {
         match self.mesh.node_dofs(id) {
-            Some([x, y]) => [self.dynamics.state.displacement[x], self.dynamics.state.displacement[y]],
+            Some([x, y]) => [system.state.displacement[x], system.state.displacement[y]],
             None => [0.0, 0.0],
         }
     }
 }
 
-impl Scene for BlockScene {
-    fn layout(&self) -> &Layout {
-        &self.layout
+impl Shape for BlockShape {
+    fn segment_of_point(&self, point: usize) -> usize {
+        point / 2
     }
 
-    fn time(&self) -> f64 {
-        self.dynamics.state.time
-    }
-
-    fn advance(&mut self, dt: f64) -> Result<(), RunError> {
-        advance_dynamics(&mut self.dynamics, dt, |p| p / 2)
-    }
-
-    fn advance_adaptive(&mut self, control: &mut StepControl, limit: f64) -> Result<f64, RunError> {
-        advance_dynamics_adaptive(&mut self.dynamics, control, limit, self.stepper, |p| p / 2)
-    }
-
-    fn frame(&self, needs: Needs, dt: f64) -> Frame {
-        let d = &self.dynamics;
-        let s = &d.state;
-        let points = &d.contact.points;
+    fn frame(&self, system: &System, needs: Needs, dt: f64) -> Frame {
+        let s = &system.state;
+        let points = &system.contact.points;
         let segments = (0..self.mesh.nx)
             .map(|k| {
                 segment_sample(
-                    &d.contact.params,
+                    &system.contact.params,
                     (2 * k..2 * k + 2).map(|p| (points[p].weight, s.contact[p], s.slip_rate(p, dt))),
                     needs.segment_state,
                 )
@@ -133,12 +117,15 @@ impl Scene for BlockScene {
             .collect();
         let friction_force = points.iter().zip(&s.contact).map(|(p, c)| p.weight * c.traction_t).sum();
         let surface_nodes = if needs.surface_nodes {
-            (0..=self.mesh.nx).map(|i| self.node_displacement(self.mesh.surface_node(i))).collect()
+            (0..=self.mesh.nx).map(|i| self.node_displacement(system, self.mesh.surface_node(i))).collect()
         } else {
             Vec::new()
         };
-        let mesh =
-            if needs.mesh { (0..self.mesh.nodes()).map(|id| self.node_displacement(id)).collect() } else { Vec::new() };
+        let mesh = if needs.mesh {
+            (0..self.mesh.nodes()).map(|id| self.node_displacement(system, id)).collect()
+        } else {
+            Vec::new()
+        };
         Frame {
             step: s.step,
             time: s.time,
@@ -147,7 +134,7 @@ impl Scene for BlockScene {
             surface_nodes,
             mesh,
             friction_force,
-            base_displacement: d.contact.base_displacement_at(s.time),
+            base_displacement: system.contact.base_displacement_at(s.time),
             block: None,
         }
     }

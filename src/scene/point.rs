@@ -1,8 +1,10 @@
 //! `kind = "point"`: the friction law alone, driven by a prescribed relative sliding velocity.
 
-use super::{Frame, Layout, Needs, RunError, Scene, SceneKind, SegmentInfo, friction_error, segment_sample};
 use crate::case::PointSpec;
+use crate::frame::{Frame, Layout, Needs, SceneKind, SegmentInfo};
 use crate::friction::{ContactState, FrictionParams, update};
+use crate::scene::interface::{RunError, Scene, friction_error};
+use crate::scene::sample::segment_sample;
 
 /// One contact point under constant normal traction and a piecewise-constant relative sliding
 /// velocity `v̄_t` (held at 0 after the last phase). Steps that straddle a phase change are
@@ -68,7 +70,7 @@ impl Scene for PointScene {
         self.time
     }
 
-    fn advance(&mut self, dt: f64) -> Result<(), RunError> {
+    fn advance(&mut self, dt: f64) -> Result<f64, RunError> {
         let target = self.time + dt;
         let mut t = self.time;
         let mut increment = 0.0;
@@ -87,7 +89,7 @@ impl Scene for PointScene {
         self.time = target;
         self.step += 1;
         self.last_increment = increment;
-        Ok(())
+        Ok(dt)
     }
 
     fn frame(&self, needs: Needs, dt: f64) -> Frame {

@@ -1,23 +1,24 @@
 //! `kind = "spring_block"`: a rigid block on the frictional contact, pulled through a spring
 //! whose far end moves at a constant velocity (Ozaki & Hashiguchi 2010).
 
-use super::{
-    Frame, Layout, Needs, RunError, Scene, SceneKind, SegmentInfo, advance_dynamics, advance_dynamics_adaptive,
-    dynamics_for, segment_sample,
-};
-use crate::case::{Case, Integrator, SpringBlockSpec};
-use crate::dynamics::sparse::SymmetricMatrix;
-use crate::dynamics::{ContactBoundary, ContactPoint, Dynamics, LinearBody, StepControl, WilsonSettings};
+use crate::case::{Case, SpringBlockSpec};
+use crate::dynamics::{ContactBoundary, ContactPoint, LinearBody, Settings, System};
+use crate::frame::{Frame, Layout, Needs, SceneKind, SegmentInfo};
+use crate::linalg::sparse::SymmetricMatrix;
+use crate::scene::dynamic::{DynamicScene, Shape};
+use crate::scene::interface::{RunError, step_error};
+use crate::scene::sample::segment_sample;
+
+/// The spring block's one contact point and what a frame shows of it: the block's
+/// displacement and velocity, and the spring's far end.
+pub struct SpringBlockShape {
+    /// Velocity of the spring's far end (m/s).
+    velocity: f64,
+}
 
 /// `M ẍ + k x = k v t + f_t` per unit contact area, over a fixed base. It is the one-degree-of-
-/// freedom case of the block's equation of motion and is integrated by the same [`Dynamics`].
-pub struct SpringBlockScene {
-    dynamics: Dynamics,
-    layout: Layout,
-    velocity: f64,
-    /// The adaptive integrator and the slip-rate threshold whose crossings it locates.
-    stepper: (Integrator, f64),
-}
+/// freedom case of the block's equation of motion and is integrated by the same [`System`].
+pub type SpringBlockScene = DynamicScene<SpringBlockShape>;
 
 impl SpringBlockScene {
     pub fn new(case: &Case, spec: &SpringBlockSpec) -> Result<Self, RunError> {
@@ -35,57 +36,34 @@ impl SpringBlockScene {
             base_ramp: 0.0,
             loading_direction: if spec.velocity < 0.0 { 1.0 } else { -1.0 },
         };
-        let settings = WilsonSettings {
+        let settings = Settings {
             theta: case.time.theta,
             velocity_scale: spec.velocity.abs().max(f64::MIN_POSITIVE),
             energy_tolerance: case.time.energy_guard(),
-            ..WilsonSettings::default()
+            ..Settings::default()
         };
-        let dynamics = dynamics_for(case, body, contact, settings, |_| 0)?;
+        let system = System::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |_| 0))?;
         let layout = Layout {
             kind: SceneKind::SpringBlock,
             segments: vec![SegmentInfo { left: 0.0, right: 0.0, name: None }],
             surface_nodes: Vec::new(),
             mesh: None,
             driving_velocity: spec.velocity.abs(),
-            instantaneous_slip_rate: case.time.instantaneous_slip_rate(),
+            instantaneous_slip_rate: case.time.integrator.instantaneous_slip_rate(),
         };
-        let stepper = case.stepper();
-        Ok(Self { dynamics, layout, velocity: spec.velocity, stepper })
-    }
-
-    /// The integrator, for tests that inspect it.
-    pub fn dynamics(&self) -> &Dynamics {
-        &self.dynamics
-    }
-
-    /// Mutable integrator, for tests that track its energy.
-    pub fn dynamics_mut(&mut self) -> &mut Dynamics {
-        &mut self.dynamics
+        Ok(DynamicScene::assemble(case, system, layout, SpringBlockShape { velocity: spec.velocity }))
     }
 }
 
-impl Scene for SpringBlockScene {
-    fn layout(&self) -> &Layout {
-        &self.layout
+impl Shape for SpringBlockShape {
+    fn segment_of_point(&self, _point: usize) -> usize {
+        0
     }
 
-    fn time(&self) -> f64 {
-        self.dynamics.state.time
-    }
-
-    fn advance(&mut self, dt: f64) -> Result<(), RunError> {
-        advance_dynamics(&mut self.dynamics, dt, |_| 0)
-    }
-
-    fn advance_adaptive(&mut self, control: &mut StepControl, limit: f64) -> Result<f64, RunError> {
-        advance_dynamics_adaptive(&mut self.dynamics, control, limit, self.stepper, |_| 0)
-    }
-
-    fn frame(&self, needs: Needs, dt: f64) -> Frame {
-        let s = &self.dynamics.state;
+    fn frame(&self, system: &System, needs: Needs, dt: f64) -> Frame {
+        let s = &system.state;
         let sample = segment_sample(
-            &self.dynamics.contact.params,
+            &system.contact.params,
             std::iter::once((1.0, s.contact[0], s.slip_rate(0, dt))),
             needs.segment_state,
         );

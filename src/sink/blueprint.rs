@@ -6,8 +6,9 @@ use rerun::blueprint::{
     Blueprint, ContainerLike, Horizontal, Spatial2DView, TextLogView, TimePanel, TimeSeriesView, Vertical,
 };
 
-use super::schema::{self, Quantity};
-use crate::scene::{Layout, SceneKind};
+use crate::frame::Quantity;
+use crate::frame::{Layout, SceneKind};
+use crate::record::schema;
 
 /// Names of the views, for readers that check them.
 pub const VIEW_BLOCK: &str = "Block";

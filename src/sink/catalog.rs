@@ -3,9 +3,10 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use super::events::{Catalog, Rupture, SlipEvent};
-use super::{Ending, Sink, SinkError};
-use crate::scene::{Frame, Layout, SceneKind};
+use crate::catalog::events::{Catalog, Rupture, SlipEvent};
+use crate::frame::Ending;
+use crate::frame::{Frame, Layout, SceneKind};
+use crate::sink::{Sink, SinkError};
 
 /// Header of the events CSV.
 pub const EVENTS_HEADER: &str = "segment,onset_s,end_s,slip_m,peak_slip_rate_m_s,traction_before_pa,traction_after_pa";

@@ -5,9 +5,9 @@ use std::collections::BTreeMap;
 
 use rerun::{LineStrips2D, SerializedComponentColumn};
 
-use super::colormap::{SLIP_RATE, sample};
-use super::schema::{self, RecordingPlan};
-use crate::scene::{Frame, Layout};
+use crate::frame::{Frame, Layout};
+use crate::record::colormap::{SLIP_RATE, sample};
+use crate::record::schema::{self, RecordingPlan};
 
 /// Rows of the space-time image, spread over `[0, t_end]`.
 pub const SPACETIME_ROWS: usize = 1000;

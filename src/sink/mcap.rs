@@ -1,5 +1,5 @@
 //! The MCAP sink (`slipfront run --mcap PATH`): the recorded frames as protobuf messages
-//! ([`crate::mcap_log`]), zstd-compressed chunks with a summary and chunk indexes.
+//! ([`crate::record::mcap`]), zstd-compressed chunks with a summary and chunk indexes.
 
 use std::collections::BTreeMap;
 use std::fs::File;
@@ -10,12 +10,15 @@ use mcap::records::MessageHeader;
 use mcap::{WriteOptions, Writer};
 use prost::Message as _;
 
-use super::events::Catalog;
-use super::schema::{Decimator, Quantity, RecordingPlan, RunEnding, selection};
-use super::{Ending, Sink, SinkError};
 use crate::case::Selection;
-use crate::mcap_log::{self, LogHeader, nanos, proto};
-use crate::scene::{Frame, Layout, Needs};
+use crate::catalog::events::Catalog;
+use crate::frame::Ending;
+use crate::frame::Quantity;
+use crate::frame::{Frame, Layout, Needs};
+use crate::record::mcap::{self as mcap_log, LogHeader, nanos};
+use crate::record::proto;
+use crate::record::schema::{Decimator, RecordingPlan, RunEnding, selection};
+use crate::sink::{Sink, SinkError};
 
 /// Writes a slipfront MCAP log.
 pub struct McapSink {

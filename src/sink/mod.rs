@@ -4,26 +4,14 @@
 
 pub mod blueprint;
 pub mod catalog;
-pub mod colormap;
-pub mod events;
 pub mod geometry;
 pub mod mcap;
-pub mod observations;
-pub mod recording;
-pub mod schema;
+pub mod rerun;
 
 use std::fmt;
 
-use crate::scene::{Frame, Layout, Needs};
-use events::Catalog;
-
-/// How a run ended, as the sinks are told.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Ending {
-    Completed,
-    Failed,
-    Interrupted,
-}
+use crate::catalog::events::Catalog;
+use crate::frame::{Ending, Frame, Layout, Needs};
 
 /// A sink could not write.
 #[derive(Debug, Clone, PartialEq)]

@@ -4,7 +4,6 @@
 #![allow(dead_code)]
 
 use slipfront::case::{self, Case, SceneSpec};
-use slipfront::dynamics::StepControl;
 use slipfront::run::{LoopOptions, Outcome, run};
 use slipfront::scene::block::BlockScene;
 use slipfront::scene::{self, Scene};
@@ -21,22 +20,14 @@ pub fn load(name: &str, overrides: &[&str]) -> Case {
 pub fn tractions(case: &Case, every: f64) -> Vec<Vec<f64>> {
     let SceneSpec::Block(spec) = &case.scene else { panic!("a block case") };
     let mut block = BlockScene::new(case, spec).unwrap();
-    let mut control = case
-        .time
-        .adaptive_tolerance()
-        .map(|tolerance| StepControl::new(tolerance, case.time.dt, case.time.dt_max(), case.time.dt_min()));
+    let adaptive = case.time.adaptive_tolerance().is_some();
     let samples = (case.time.t_end / every).round() as usize;
     let mut out = Vec::new();
     for k in 1..=samples {
         let target = k as f64 * every;
         while block.time() < target - 1e-9 {
             let left = target - block.time();
-            match control.as_mut() {
-                Some(control) => {
-                    block.advance_adaptive(control, left).unwrap();
-                }
-                None => block.advance(case.time.dt.min(left)).unwrap(),
-            }
+            block.advance(if adaptive { left } else { case.time.dt.min(left) }).unwrap();
         }
         let frame = block.frame(Default::default(), 0.0);
         out.push(frame.segments.iter().map(|s| s.traction_t).collect());

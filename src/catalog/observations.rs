@@ -6,7 +6,7 @@
 //! surface (the paper's segments A, B) and stay "local" if they do not reach the right third
 //! (E, F); a rupture "reaches the whole surface" if every segment slipped.
 
-use super::events::{Rupture, SlipEvent};
+use crate::catalog::events::{Rupture, SlipEvent};
 
 /// What the catalog says about the paper's observations.
 #[derive(Debug, Clone, PartialEq)]
@@ -75,7 +75,7 @@ impl Observations {
 }
 
 /// Whether the paper's observations 1–3 hold in one run, by the criteria below (fixed when the
-/// paper case was first calibrated, before its chaos was known; see [`crate::ensemble`]).
+/// paper case was first calibrated, before its chaos was known; see [`crate::study::ensemble`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Verdict {
     /// 1. The left end slips 4 to 6 times (the paper: 5), re-slipping at a mean `1/R*` in

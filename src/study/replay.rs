@@ -5,10 +5,11 @@ use std::time::{Duration, Instant};
 
 use rerun::RecordingStream;
 
+use crate::frame::Ending;
+use crate::inspect::mcap::Log;
 use crate::inspect::{ReadError, Recording, rrd};
-use crate::mcap_log::reader::Log;
-use crate::sink::recording::RerunSink;
-use crate::sink::{Ending, Sink, SinkError};
+use crate::sink::rerun::RerunSink;
+use crate::sink::{Sink, SinkError};
 
 /// Re-emits `log` into `stream`. With `speed`, simulated time runs at `speed` × wall time.
 pub fn replay(log: &Log, stream: RecordingStream, speed: Option<f64>) -> Result<(), SinkError> {
@@ -35,7 +36,7 @@ pub fn replay(log: &Log, stream: RecordingStream, speed: Option<f64>) -> Result<
 
 /// The recording a log replays into, read back for `check`.
 pub fn replayed_recording(log: &Log) -> Result<Recording, ReadError> {
-    let (stream, storage) = rerun::RecordingStreamBuilder::new(crate::sink::schema::APP_ID)
+    let (stream, storage) = rerun::RecordingStreamBuilder::new(crate::record::schema::APP_ID)
         .enabled(true)
         .memory()
         .map_err(|e| ReadError(format!("cannot replay the log in memory: {e}")))?;

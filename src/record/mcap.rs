@@ -15,13 +15,10 @@
 //!
 //! Messages are stamped with simulated time in nanoseconds (`log_time` = `publish_time`).
 
-pub mod proto;
-pub mod reader;
-
 use serde::{Deserialize, Serialize};
 
-use crate::scene::Layout;
-use crate::sink::schema::RecordingPlan;
+use crate::frame::Layout;
+use crate::record::schema::RecordingPlan;
 
 /// Version tag of the header.
 pub const FORMAT: &str = "slipfront-mcap/1";

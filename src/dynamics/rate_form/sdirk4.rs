@@ -1,7 +1,7 @@
 //! The rate form integrated by an L-stable singly diagonally implicit Runge–Kutta method of
 //! order 4 with an embedded third-order solution.
 //!
-//! Tsitouras' pair ([`super::runge_kutta`]) integrates the paper's rate equations explicitly, so
+//! Tsitouras' pair ([`crate::dynamics::runge_kutta`]) integrates the paper's rate equations explicitly, so
 //! its steps cannot outgrow the undamped contact mode (`hω ≈ 1`) however slowly the block is
 //! loaded. This module integrates the same system `y = (u, v, f_t, 1/R*, p)`, with the same
 //! right-hand side, by the SDIRK method of Hairer and Wanner (*Solving Ordinary Differential
@@ -19,15 +19,24 @@
 //! (renewed at the current iterate when the iteration converges slowly). `I - hγJ` is never
 //! formed: `u = hγ v + …` and each contact point's `(f_t, 1/R*, p)` are eliminated (a 2 × 2
 //! block per point), leaving the body's velocities with the symmetric operator
-//! `M/(hγ)² + K + K_c` of Wilson's method ([`Dynamics::factor_operator`]), factored once per
+//! `M/(hγ)² + K + K_c` of Wilson's method ([`System::factor_operator`]), factored once per
 //! linearization. `K_c` holds each point's `-w ∂ḟ_t/∂v̄_t` after its own state has been
 //! eliminated, the same `-w ∂f_t/∂Δū` the implicit friction update gives Wilson's step.
 //!
 //! Threshold crossings of the slip rate are located as for Tsitouras' pair
-//! ([`super::runge_kutta`]).
+//! ([`crate::dynamics::runge_kutta`]).
 
-use super::wilson::{Dynamics, StepError};
+use crate::dynamics::control::ErrorScaling;
+use crate::dynamics::error::StepError;
+use crate::dynamics::system::System;
 use crate::friction::{ContactState, FrictionParams, law};
+
+/// SDIRK's embedded estimate is that of its third-order solution: per step, falling as `h⁴`.
+pub(crate) const FOURTH_ORDER: ErrorScaling = ErrorScaling { per_unit_step: false, root: fourth_root, max_growth: 5.0 };
+
+fn fourth_root(x: f64) -> f64 {
+    x.sqrt().sqrt()
+}
 
 /// The diagonal `γ` of the tableau.
 pub const GAMMA: f64 = 0.25;
@@ -100,7 +109,7 @@ impl PointLinearization {
     }
 }
 
-/// The method's stages and workspace on `ẏ = f(t, y)` of one [`Dynamics`].
+/// The method's stages and workspace on `ẏ = f(t, y)` of one [`System`].
 #[derive(Debug, Clone)]
 pub struct Sdirk4 {
     stages: [Vec<f64>; 5],
@@ -145,7 +154,7 @@ impl Sdirk4 {
     #[allow(clippy::too_many_arguments)]
     pub fn step(
         &mut self,
-        dynamics: &mut Dynamics,
+        dynamics: &mut System,
         y: &[f64],
         rate: &[f64],
         t: f64,
@@ -205,7 +214,7 @@ impl Sdirk4 {
     }
 
     /// Newton's method on `Y = known + hγ f(t, Y)` from `Y = work`.
-    fn solve_stage(&mut self, dynamics: &mut Dynamics, t: f64, scale: &[f64], tolerance: f64) -> Result<(), StepError> {
+    fn solve_stage(&mut self, dynamics: &mut System, t: f64, scale: &[f64], tolerance: f64) -> Result<(), StepError> {
         let goal = NEWTON_SHARE * tolerance;
         let mut renewed = false;
         let mut previous = f64::INFINITY;
@@ -248,7 +257,7 @@ impl Sdirk4 {
 
     /// Linearizes `f` at `(t, y)` for the stage operator `I - gJ`: each point's block, and the
     /// body's operator factored.
-    fn linearize(&mut self, dynamics: &mut Dynamics, t: f64, y: &[f64], g: f64) -> Result<(), StepError> {
+    fn linearize(&mut self, dynamics: &mut System, t: f64, y: &[f64], g: f64) -> Result<(), StepError> {
         let n = dynamics.body.dofs();
         let m = dynamics.contact.points.len();
         let params = &dynamics.contact.params;
@@ -284,7 +293,7 @@ impl Sdirk4 {
     }
 
     /// Solves `(I - gJ) δ = r` in place for the last linearization (module docs).
-    fn solve(&self, dynamics: &Dynamics, r: &mut [f64]) {
+    fn solve(&self, dynamics: &System, r: &mut [f64]) {
         let n = dynamics.body.dofs();
         let m = dynamics.contact.points.len();
         let g = self.g;
@@ -325,7 +334,7 @@ impl Sdirk4 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dynamics::WilsonSettings;
+    use crate::dynamics::Settings;
     use crate::fem::{Block, PlaneStrain, StructuredMesh, assemble};
     use crate::friction::FrictionParams;
     use nalgebra::{Complex, DMatrix, DVector};
@@ -341,7 +350,7 @@ mod tests {
         let params = FrictionParams::paper();
         let traction_n = |x: f64| if x < 0.5 { 0.0 } else { 300.0 + 200.0 * x };
         let Block { body, contact, .. } = assemble(mesh, material, 1000.0, params.clone(), traction_n, 1e-3, 0.0);
-        let mut dynamics = Dynamics::new(body, contact, WilsonSettings::default()).unwrap();
+        let mut dynamics = System::new(body, contact, Settings::default()).unwrap();
         let n = dynamics.body.dofs();
         let m = dynamics.contact.points.len();
         let mut y = vec![0.0; 2 * n + 3 * m];

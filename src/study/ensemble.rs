@@ -16,9 +16,10 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use crate::case::Case;
+use crate::catalog::events::Catalog;
+use crate::frame::Needs;
 use crate::run::{LoopOptions, Outcome, run};
-use crate::scene::{self, Needs, RunError};
-use crate::sink::events::Catalog;
+use crate::scene::{self, RunError};
 
 /// One member of an ensemble.
 #[derive(Debug)]

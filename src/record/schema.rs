@@ -1,10 +1,11 @@
 //! The recording schema: timelines, entity paths and units, shared by the writer
-//! ([`super::recording`]) and the reader (`slipfront check`). The README's table is this module.
+//! ([`crate::sink::rerun`]) and the reader (`slipfront check`). The README's table is this module.
 
 use serde::{Deserialize, Serialize};
 
-use crate::case::{Case, Integrator, RecordSpec};
-use crate::scene::{Frame, Layout, SceneKind, SegmentSample};
+use crate::case::{Case, RecordSpec};
+use crate::dynamics::Method;
+use crate::frame::{Frame, Layout, Quantity, SceneKind};
 
 /// Application id of every recording.
 pub const APP_ID: &str = "slipfront";
@@ -38,81 +39,6 @@ pub const SPACETIME_NOW: &str = "spacetime/now";
 /// Text log of slip events and ruptures at their onsets.
 pub const EVENTS: &str = "events";
 
-/// A per-segment quantity: `contact/segments/{k}/{name}`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum Quantity {
-    #[serde(rename = "traction_t")]
-    TractionT,
-    #[serde(rename = "traction_n")]
-    TractionN,
-    #[serde(rename = "R")]
-    R,
-    #[serde(rename = "R_star")]
-    RStar,
-    #[serde(rename = "structure")]
-    Structure,
-    #[serde(rename = "slip_rate")]
-    SlipRate,
-    #[serde(rename = "slip")]
-    Slip,
-}
-
-impl Quantity {
-    pub const ALL: [Quantity; 7] = [
-        Quantity::TractionT,
-        Quantity::TractionN,
-        Quantity::R,
-        Quantity::RStar,
-        Quantity::Structure,
-        Quantity::SlipRate,
-        Quantity::Slip,
-    ];
-
-    /// Last component of the entity path.
-    pub fn name(self) -> &'static str {
-        match self {
-            Quantity::TractionT => "traction_t",
-            Quantity::TractionN => "traction_n",
-            Quantity::R => "R",
-            Quantity::RStar => "R_star",
-            Quantity::Structure => "structure",
-            Quantity::SlipRate => "slip_rate",
-            Quantity::Slip => "slip",
-        }
-    }
-
-    /// Symbol and unit, for series names.
-    pub fn label(self) -> &'static str {
-        match self {
-            Quantity::TractionT => "f_t (Pa)",
-            Quantity::TractionN => "f_n (Pa)",
-            Quantity::R => "R",
-            Quantity::RStar => "R*",
-            Quantity::Structure => "1/R*",
-            Quantity::SlipRate => "slip rate (m/s)",
-            Quantity::Slip => "slip (m)",
-        }
-    }
-
-    /// The value in a segment sample.
-    pub fn of(self, s: &SegmentSample) -> f64 {
-        match self {
-            Quantity::TractionT => s.traction_t,
-            Quantity::TractionN => s.traction_n,
-            Quantity::R => s.sliding_ratio,
-            Quantity::RStar => s.r_star,
-            Quantity::Structure => s.structure,
-            Quantity::SlipRate => s.slip_rate,
-            Quantity::Slip => s.slip,
-        }
-    }
-
-    /// Whether the scene must compute the full segment state for it.
-    pub fn needs_state(self) -> bool {
-        matches!(self, Quantity::TractionN | Quantity::R | Quantity::RStar | Quantity::Structure)
-    }
-}
-
 /// `contact/segments/{k}/{quantity}`.
 pub fn segment_entity(segment: usize, quantity: Quantity) -> String {
     format!("contact/segments/{segment}/{}", quantity.name())
@@ -134,7 +60,7 @@ pub struct RecordingPlan {
     pub steps: u64,
     /// The time integrator (`time.integrator`); Wilson's in recordings from before it was named.
     #[serde(default)]
-    pub integrator: Integrator,
+    pub integrator: Method,
     /// The adaptive steps' tolerance, if steps are adaptive (`time.tolerance`, or Tsit5's default).
     #[serde(default)]
     pub tolerance: Option<f64>,
@@ -160,28 +86,7 @@ impl RecordingPlan {
     /// How the run steps, for people: `in N steps of dt s`, or the adaptive integrator and its
     /// tolerance.
     pub fn stepping(&self) -> String {
-        stepping(self.integrator, self.tolerance, self.steps, self.dt)
-    }
-}
-
-/// See [`RecordingPlan::stepping`].
-fn stepping(integrator: Integrator, tolerance: Option<f64>, steps: u64, dt: f64) -> String {
-    match (integrator, tolerance) {
-        (Integrator::Wilson, None) => format!("in {steps} steps of {dt} s"),
-        (Integrator::Wilson, Some(tolerance)) => {
-            format!("in adaptive Wilson steps from {dt} s, tolerance {tolerance:e} per simulated second")
-        }
-        (Integrator::Central, _) => {
-            format!("in {steps} frames of {dt} s by central differences, each sub-stepped to the stability limit")
-        }
-        (Integrator::Tsit5, tolerance) => format!(
-            "by Tsitouras' 5(4) pair from a step of {dt} s, tolerance {:e} per step",
-            tolerance.unwrap_or(crate::case::TSIT5_DEFAULT_TOLERANCE)
-        ),
-        (Integrator::Sdirk4, tolerance) => format!(
-            "by the L-stable SDIRK 4(3) from a step of {dt} s, tolerance {:e} per step",
-            tolerance.unwrap_or(crate::case::SDIRK4_DEFAULT_TOLERANCE)
-        ),
+        self.integrator.describe(self.tolerance, self.steps, self.dt)
     }
 }
 
@@ -286,14 +191,14 @@ pub struct RunInfo {
     /// Case file stem.
     pub case: String,
     /// Scene kind.
-    pub kind: crate::scene::SceneKind,
+    pub kind: crate::frame::SceneKind,
     pub t_end: f64,
     pub dt: f64,
     /// Planned steps (fixed steps only).
     pub steps: u64,
     /// See [`RecordingPlan::integrator`].
     #[serde(default)]
-    pub integrator: Integrator,
+    pub integrator: Method,
     /// See [`RecordingPlan::tolerance`].
     #[serde(default)]
     pub tolerance: Option<f64>,
@@ -322,7 +227,7 @@ pub struct RunInfo {
 impl RunInfo {
     /// How the run steps ([`RecordingPlan::stepping`]).
     pub fn stepping(&self) -> String {
-        stepping(self.integrator, self.tolerance, self.steps, self.dt)
+        self.integrator.describe(self.tolerance, self.steps, self.dt)
     }
 
     /// The description of a run over `layout` recording `series`.
@@ -424,7 +329,12 @@ pub struct RunEnding {
 }
 
 impl RunEnding {
-    pub fn new(ending: crate::sink::Ending, last_time: f64, rows: u64, catalog: &crate::sink::events::Catalog) -> Self {
+    pub fn new(
+        ending: crate::frame::Ending,
+        last_time: f64,
+        rows: u64,
+        catalog: &crate::catalog::events::Catalog,
+    ) -> Self {
         Self {
             ending: ending.name().into(),
             last_time,

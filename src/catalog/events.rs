@@ -1,15 +1,15 @@
-//! Slip events and ruptures detected from frames: no I/O here (see [`super::catalog`]).
+//! Slip events and ruptures detected from frames: no I/O here (see [`crate::sink::catalog`]).
 //!
 //! A segment slips while its plastic slip rate exceeds the threshold. The slip rate of a step,
 //! `Δp/Δt`, is the mean over the step, so it is placed at the step's midpoint; onsets and ends
 //! are where the linear interpolation between midpoints crosses the threshold, and the slip and
 //! traction there are interpolated between frames. Where the slip rates are instantaneous
-//! (the Runge–Kutta integrator's `Λ`, [`crate::scene::Layout::instantaneous_slip_rate`]), they
+//! (the Runge–Kutta integrator's `Λ`, [`crate::frame::Layout::instantaneous_slip_rate`]), they
 //! are placed at the frames' times instead. With a merge window `w > 0`, a segment's
 //! event that starts less than `w` after its previous one ended continues that event (the slip
 //! rate of a decelerating segment can flicker about the threshold in its tail).
 
-use crate::scene::Frame;
+use crate::frame::Frame;
 
 /// The catalog of a run: its slip events (by onset) and their grouping into ruptures.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -38,7 +38,7 @@ pub struct SlipEvent {
     pub friction_force_before: f64,
     pub friction_force_after: f64,
     /// Segment degree of structure `1/R*` at the onset, when the frames carried it
-    /// ([`crate::scene::Needs::segment_state`]).
+    /// ([`crate::frame::Needs::segment_state`]).
     pub structure_before: Option<f64>,
 }
 
@@ -137,7 +137,7 @@ impl EventDetector {
     }
 
     /// The same detector for frames whose slip rates are instantaneous values at the frame's
-    /// time ([`crate::scene::Layout::instantaneous_slip_rate`]).
+    /// time ([`crate::frame::Layout::instantaneous_slip_rate`]).
     pub fn with_instantaneous_rates(mut self, instantaneous: bool) -> Self {
         self.instantaneous = instantaneous;
         self

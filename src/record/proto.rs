@@ -274,8 +274,8 @@ pub struct Ending {
     pub ending: String,
 }
 
-impl From<&crate::sink::events::SlipEvent> for SlipEvent {
-    fn from(e: &crate::sink::events::SlipEvent) -> Self {
+impl From<&crate::catalog::events::SlipEvent> for SlipEvent {
+    fn from(e: &crate::catalog::events::SlipEvent) -> Self {
         Self {
             segment: e.segment as u32,
             onset: e.onset,
@@ -291,7 +291,7 @@ impl From<&crate::sink::events::SlipEvent> for SlipEvent {
     }
 }
 
-impl From<SlipEvent> for crate::sink::events::SlipEvent {
+impl From<SlipEvent> for crate::catalog::events::SlipEvent {
     fn from(e: SlipEvent) -> Self {
         Self {
             segment: e.segment as usize,
@@ -308,8 +308,8 @@ impl From<SlipEvent> for crate::sink::events::SlipEvent {
     }
 }
 
-impl From<&crate::sink::events::Rupture> for Rupture {
-    fn from(r: &crate::sink::events::Rupture) -> Self {
+impl From<&crate::catalog::events::Rupture> for Rupture {
+    fn from(r: &crate::catalog::events::Rupture) -> Self {
         Self {
             onset: r.onset,
             end: r.end,
@@ -323,7 +323,7 @@ impl From<&crate::sink::events::Rupture> for Rupture {
     }
 }
 
-impl From<Rupture> for crate::sink::events::Rupture {
+impl From<Rupture> for crate::catalog::events::Rupture {
     fn from(r: Rupture) -> Self {
         Self {
             onset: r.onset,

@@ -8,9 +8,9 @@
 //! `x` with each node's two values swapped, for the off-diagonal entries of the block) times
 //! two alternating coefficients: contiguous loops that vectorize, and that read only `x`
 //! (1.6 MB) where a compressed sparse matrix reads 58 MB. Explicit time stepping
-//! ([`super::central`]) does one product per step.
+//! ([`crate::dynamics::central`]) does one product per step.
 
-use super::sparse::SymmetricMatrix;
+use crate::linalg::sparse::SymmetricMatrix;
 
 /// Entries of two stencils that differ by at most this share of the stencil's largest are the
 /// same (a few roundings of its sum).

@@ -14,10 +14,11 @@ use std::sync::Once;
 
 use plotters::prelude::*;
 
+use crate::frame::Quantity;
+use crate::frame::SceneKind;
 use crate::inspect::{Recording, Series};
-use crate::scene::SceneKind;
-use crate::sink::colormap::{POSITION, SLIP_RATE, sample};
-use crate::sink::schema::{self, Quantity, RunInfo};
+use crate::record::colormap::{POSITION, SLIP_RATE, sample};
+use crate::record::schema::{self, RunInfo};
 
 const WIDTH: u32 = 1400;
 const HEIGHT: u32 = 800;

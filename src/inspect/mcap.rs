@@ -9,12 +9,13 @@ use std::path::Path;
 
 use prost::Message as _;
 
-use super::{LogHeader, proto};
+use crate::catalog::events::Catalog;
+use crate::frame::{Frame, SegmentSample};
 use crate::inspect::ReadError;
 use crate::inspect::framing;
-use crate::scene::{Frame, SegmentSample};
-use crate::sink::events::Catalog;
-use crate::sink::schema::RunEnding;
+use crate::record::mcap::LogHeader;
+use crate::record::proto;
+use crate::record::schema::RunEnding;
 
 /// A log read back.
 #[derive(Debug, Clone)]
@@ -84,7 +85,7 @@ fn decode(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
         };
         let schema = message.channel.schema.as_ref().map(|s| s.name.as_str()).unwrap_or("");
         let topic = message.channel.topic.as_str();
-        let known = super::TOPICS.iter().any(|(t, m)| *t == topic && schema == proto::full_name(m));
+        let known = crate::record::mcap::TOPICS.iter().any(|(t, m)| *t == topic && schema == proto::full_name(m));
         if !known || message.channel.message_encoding != "protobuf" {
             *skipped.entry(topic.to_string()).or_default() += 1;
             continue;
@@ -93,42 +94,42 @@ fn decode(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
         let bad = |e: prost::DecodeError| format!("message {} on {topic} does not decode: {e}", messages + 1);
         let decoded: Result<(), String> = (|| {
             match topic {
-                super::TOPIC_RUN => {
+                crate::record::mcap::TOPIC_RUN => {
                     let run = proto::Run::decode(data).map_err(bad)?;
                     let parsed: LogHeader =
                         toml::from_str(&run.header).map_err(|e| format!("the run header is unreadable: {e}"))?;
-                    if parsed.format != super::FORMAT {
-                        return Err(format!("log format {} is not {}", parsed.format, super::FORMAT));
+                    if parsed.format != crate::record::mcap::FORMAT {
+                        return Err(format!("log format {} is not {}", parsed.format, crate::record::mcap::FORMAT));
                     }
                     header = Some(parsed);
                 }
-                super::TOPIC_SEGMENTS => {
+                crate::record::mcap::TOPIC_SEGMENTS => {
                     let m = proto::SegmentStates::decode(data).map_err(bad)?;
                     let step = m.step;
                     parts.entry(step).or_default().segments = Some(m);
                 }
-                super::TOPIC_NODES => {
+                crate::record::mcap::TOPIC_NODES => {
                     let m = proto::NodeDisplacements::decode(data).map_err(bad)?;
                     let step = m.step;
                     parts.entry(step).or_default().nodes = Some(m);
                 }
-                super::TOPIC_MESH => {
+                crate::record::mcap::TOPIC_MESH => {
                     let m = proto::MeshDisplacements::decode(data).map_err(bad)?;
                     let step = m.step;
                     parts.entry(step).or_default().mesh = Some(m);
                 }
-                super::TOPIC_TOTALS => {
+                crate::record::mcap::TOPIC_TOTALS => {
                     let m = proto::Totals::decode(data).map_err(bad)?;
                     let step = m.step;
                     parts.entry(step).or_default().totals = Some(m);
                 }
-                super::TOPIC_EVENTS => {
+                crate::record::mcap::TOPIC_EVENTS => {
                     catalog.events.push(proto::SlipEvent::decode(data).map_err(bad)?.into());
                 }
-                super::TOPIC_RUPTURES => {
+                crate::record::mcap::TOPIC_RUPTURES => {
                     catalog.ruptures.push(proto::Rupture::decode(data).map_err(bad)?.into());
                 }
-                super::TOPIC_ENDING => {
+                crate::record::mcap::TOPIC_ENDING => {
                     let m = proto::Ending::decode(data).map_err(bad)?;
                     ending =
                         Some(toml::from_str(&m.ending).map_err(|e| format!("the ending record is unreadable: {e}"))?);
@@ -151,7 +152,7 @@ fn decode(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
         };
         return Err(ReadError(format!(
             "{name} holds no slipfront run header on {}{others}: not a slipfront log, or damaged before it",
-            super::TOPIC_RUN
+            crate::record::mcap::TOPIC_RUN
         )));
     };
     let (frames, incomplete) = assemble(&header, parts);

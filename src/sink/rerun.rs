@@ -1,6 +1,6 @@
 //! The Rerun sink: every recorded step as time series on the `sim_time` and `step` timelines,
 //! a spatial view of the deforming block with its contact coloured by state, a space-time
-//! view of slip rate, the catalog as text logs, and a default blueprint ([`super::blueprint`]).
+//! view of slip rate, the catalog as text logs, and a default blueprint ([`crate::sink::blueprint`]).
 //!
 //! Time series are buffered and sent as columns (`send_columns` bypasses Rerun's batcher, so
 //! many steps go as one chunk); geometry is logged row by row on recorded steps. While no
@@ -8,13 +8,14 @@
 
 use rerun::{RecordingStream, Scalars, SeriesLines, TimeColumn};
 
-use super::blueprint::default_blueprint;
-use super::colormap::{POSITION, SLIP_RATE, sample};
-use super::events::Catalog;
-use super::geometry::{GeometryBuffer, SPACETIME_ROWS, spacetime_width};
-use super::schema::{self, Decimator, RecordingPlan, RunEnding, RunInfo, Source, selection, series_plan};
-use super::{Ending, Sink, SinkError};
-use crate::scene::{Frame, Layout, Needs, SceneKind};
+use crate::catalog::events::Catalog;
+use crate::frame::Ending;
+use crate::frame::{Frame, Layout, Needs, SceneKind};
+use crate::record::colormap::{POSITION, SLIP_RATE, sample};
+use crate::record::schema::{self, Decimator, RecordingPlan, RunEnding, RunInfo, Source, selection, series_plan};
+use crate::sink::blueprint::default_blueprint;
+use crate::sink::geometry::{GeometryBuffer, SPACETIME_ROWS, spacetime_width};
+use crate::sink::{Sink, SinkError};
 
 /// Rows buffered per series before they are sent as one chunk.
 const ROWS_PER_CHUNK: usize = 4096;

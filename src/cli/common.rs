@@ -1,0 +1,41 @@
+//! What the commands share: exit codes, the error line, and where a live copy goes.
+
+use std::process::ExitCode;
+
+use clap::Args;
+
+use crate::sink::rerun::Viewer;
+
+/// Exit code for invalid input (case, arguments, output folder).
+pub const EXIT_INVALID: u8 = 2;
+/// Exit code for a failure during the run.
+pub const EXIT_FAILED: u8 = 1;
+/// Exit code after Ctrl-C (128 + SIGINT); SIGTERM gives 143 (128 + SIGTERM).
+pub const EXIT_INTERRUPTED: u8 = 130;
+
+/// Where a live copy of the recording goes.
+#[derive(Debug, Args)]
+pub struct ViewerArgs {
+    /// Stream to a new Rerun viewer (the `rerun` executable on PATH).
+    #[arg(long, conflicts_with = "connect")]
+    pub spawn: bool,
+    /// Stream to a running Rerun viewer, e.g. rerun+http://127.0.0.1:9876/proxy.
+    #[arg(long, value_name = "URL")]
+    pub connect: Option<String>,
+}
+
+impl ViewerArgs {
+    pub fn viewer(&self) -> Viewer {
+        match (&self.connect, self.spawn) {
+            (Some(url), _) => Viewer::Connect(url.clone()),
+            (None, true) => Viewer::Spawn,
+            (None, false) => Viewer::None,
+        }
+    }
+}
+
+/// Prints `slipfront: message` on stderr and returns `code`.
+pub(crate) fn fail(code: u8, message: impl std::fmt::Display) -> ExitCode {
+    eprintln!("slipfront: {message}");
+    ExitCode::from(code)
+}

@@ -1,0 +1,36 @@
+//! `slipfront figures RECORDING.rrd [--out DIR]`: the paper's Figures 8 and 9 as PNG files.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+
+use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, fail};
+use crate::inspect;
+use crate::study::figures;
+
+#[derive(Debug, Args)]
+pub struct FiguresArgs {
+    /// The recording (.rrd).
+    pub recording: PathBuf,
+    /// Folder for the PNG files (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "recordings")]
+    pub out: PathBuf,
+}
+
+/// Runs `slipfront figures`.
+pub fn command(args: FiguresArgs) -> ExitCode {
+    let recording = match inspect::rrd::read(&args.recording) {
+        Ok(r) => r,
+        Err(e) => return fail(EXIT_INVALID, e),
+    };
+    match figures::write_figures(&recording, &args.out) {
+        Ok(paths) => {
+            for path in paths {
+                println!("{}", path.display());
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(EXIT_FAILED, e),
+    }
+}

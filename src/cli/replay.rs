@@ -1,0 +1,73 @@
+//! `slipfront replay LOG.mcap [--rrd OUT] [--spawn | --connect URL] [--speed FACTOR]`: an
+//! MCAP log re-emitted to Rerun with the live schema and blueprint.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+
+use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, fail};
+use crate::inspect;
+use crate::sink::rerun::{Viewer, open_stream};
+use crate::study::replay;
+
+#[derive(Debug, Args)]
+pub struct ReplayArgs {
+    /// The MCAP log (written by `slipfront run --mcap`).
+    pub log: PathBuf,
+    /// Write the replay to this recording.
+    #[arg(long, value_name = "PATH")]
+    pub rrd: Option<PathBuf>,
+    #[command(flatten)]
+    pub viewer: ViewerArgs,
+    /// Pace the replay: simulated seconds per wall-clock second (default: as fast as possible).
+    #[arg(long, value_name = "FACTOR")]
+    pub speed: Option<f64>,
+}
+
+/// Runs `slipfront replay`.
+pub fn command(args: ReplayArgs) -> ExitCode {
+    if let Some(speed) = args.speed
+        && !(speed.is_finite() && speed > 0.0)
+    {
+        return fail(EXIT_INVALID, format!("--speed {speed}: must be a finite number greater than 0"));
+    }
+    let log = match inspect::mcap::read(&args.log) {
+        Ok(log) => log,
+        Err(e) => return fail(EXIT_INVALID, e),
+    };
+    for (topic, count) in &log.skipped {
+        eprintln!("slipfront: skipping {count} messages on {topic}: not a slipfront channel");
+    }
+    let viewer = args.viewer.viewer();
+    let rrd = args.rrd.clone().or_else(|| {
+        (viewer == Viewer::None).then(|| {
+            let stem = args.log.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "log".into());
+            args.log.with_file_name(format!("{stem}.replay.rrd"))
+        })
+    });
+    let stream = match open_stream(rrd.as_deref(), &viewer, &log.header.plan.case) {
+        Ok(Some(stream)) => stream,
+        Ok(None) => return fail(EXIT_INVALID, "nothing to replay into"),
+        Err(e) => return fail(EXIT_INVALID, e),
+    };
+    if let Err(e) = replay::replay(&log, stream, args.speed) {
+        return fail(EXIT_FAILED, e);
+    }
+    let last = log.frames.last().map_or(0.0, |f| f.time);
+    let into = rrd.map_or_else(|| "the viewer".to_string(), |p| p.display().to_string());
+    match &log.problem {
+        Some(problem) => fail(
+            EXIT_FAILED,
+            format!(
+                "{}: {problem}; replayed {} recorded steps up to t = {last} s into {into}",
+                args.log.display(),
+                log.frames.len()
+            ),
+        ),
+        None => {
+            println!("slipfront: replayed {} recorded steps up to t = {last} s into {into}", log.frames.len());
+            ExitCode::SUCCESS
+        }
+    }
+}

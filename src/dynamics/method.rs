@@ -1,0 +1,193 @@
+//! Which integrator does what: every rule about the time integrators in one place. A case
+//! names a [`Method`] (`time.integrator`); this module says what tolerance it takes, whether
+//! its steps are adaptive, what it reports, and builds it ([`Stepping::integrator`]).
+
+use serde::{Deserialize, Serialize};
+
+use crate::dynamics::central::CentralDifference;
+use crate::dynamics::control::StepControl;
+use crate::dynamics::integrator::Integrator;
+use crate::dynamics::rate_form::driver::{RateForm, Tableau};
+use crate::dynamics::step_doubling::StepDoubling;
+use crate::dynamics::system::System;
+use crate::dynamics::wilson::Wilson;
+
+/// `time.integrator`: the time integrator of dynamic scenes.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// Wilson's θ method with the implicit friction update (the paper's §2.2): fixed steps of
+    /// `dt`, or adaptive by step doubling when `tolerance` is set.
+    #[default]
+    Wilson,
+    /// Tsitouras' 5(4) pair on the rate equations (4)-(6), (14), always adaptive, with the
+    /// instants where a contact point's slip rate crosses the event threshold located
+    /// ([`crate::dynamics::rate_form`]). `tolerance` is its local error per step.
+    Tsit5,
+    /// Hairer and Wanner's L-stable SDIRK 4(3) on the same rate equations, always adaptive,
+    /// crossings located as for `Tsit5` ([`crate::dynamics::rate_form::sdirk4`]). `tolerance`
+    /// is its local error per step.
+    Sdirk4,
+    /// Explicit central differences for the body with the implicit friction update of each
+    /// step ([`crate::dynamics::central`]): frames every `dt`, each taken in the fewest equal
+    /// sub-steps the stability limit allows. No `tolerance`.
+    Central,
+}
+
+/// Local error per step of `tsit5` when `time.tolerance` is not given.
+pub const TSIT5_DEFAULT_TOLERANCE: f64 = 1e-8;
+
+/// Local error per step of `sdirk4` when `time.tolerance` is not given.
+pub const SDIRK4_DEFAULT_TOLERANCE: f64 = 1e-7;
+
+/// The smallest local error per step that `sdirk4` is let hold. Its stages are recovered as
+/// `(Y - known)/(hγ)`, whose rounding grows as the step shrinks, and through a slip the error
+/// estimate stops falling with the step: the spring block fails at 1e-13 (796 s) and the paper
+/// case at 1e-12 (776 s), each with a step below the smallest allowed; both run their 1000 s at
+/// 1e-11.
+pub const SDIRK4_SMALLEST_TOLERANCE: f64 = 1e-11;
+
+/// Most steps a run may take, to refuse a typo such as `dt = 1e-12` before it starts.
+pub const MAX_STEPS: f64 = 1e9;
+
+/// What `time.tolerance` means for a method, and the range it must lie in.
+pub struct ToleranceRule {
+    /// The smallest tolerance allowed (inclusive), if any; else it must be above 0.
+    pub smallest: Option<f64>,
+    /// The largest (inclusive).
+    pub largest: f64,
+    /// What it means, for error messages.
+    pub meaning: String,
+}
+
+impl Method {
+    /// The case file's name for it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Wilson => "wilson",
+            Method::Tsit5 => "tsit5",
+            Method::Sdirk4 => "sdirk4",
+            Method::Central => "central",
+        }
+    }
+
+    /// What `time.tolerance` means for this method and where it must lie; `None` where the
+    /// method takes no tolerance (central differences).
+    pub fn tolerance_rule(self) -> Option<ToleranceRule> {
+        let (smallest, meaning) = match self {
+            Method::Wilson => (None, "a relative local error per second, 1/s".to_string()),
+            Method::Sdirk4 => (
+                Some(SDIRK4_SMALLEST_TOLERANCE),
+                "a relative local error per step of sdirk4; below that, rounding in its stages \
+                 can exceed it through the slips"
+                    .to_string(),
+            ),
+            Method::Tsit5 => (None, format!("a relative local error per step of {}", self.name())),
+            Method::Central => return None,
+        };
+        Some(ToleranceRule { smallest, largest: 0.1, meaning })
+    }
+
+    /// The tolerance of adaptive stepping, if steps are adaptive: `tolerance` as given, or for
+    /// the Runge–Kutta methods (always adaptive) their default.
+    pub fn adaptive_tolerance(self, tolerance: Option<f64>) -> Option<f64> {
+        match self {
+            Method::Wilson => tolerance,
+            Method::Tsit5 => Some(tolerance.unwrap_or(TSIT5_DEFAULT_TOLERANCE)),
+            Method::Sdirk4 => Some(tolerance.unwrap_or(SDIRK4_DEFAULT_TOLERANCE)),
+            Method::Central => None,
+        }
+    }
+
+    /// Whether the method keeps an energy ledger and guards it (`time.energy_tolerance`):
+    /// Wilson's method does; the Runge–Kutta methods' error control bounds their steps; central
+    /// differences conserve energy up to their truncation error.
+    pub fn guards_energy(self) -> bool {
+        self == Method::Wilson
+    }
+
+    /// Whether the method reports each point's plastic slip rate `Λ` at the end of a step
+    /// (the Runge–Kutta methods) rather than the step's mean `Δp/Δt`.
+    pub fn instantaneous_slip_rate(self) -> bool {
+        matches!(self, Method::Tsit5 | Method::Sdirk4)
+    }
+
+    /// Whether every step is one of Wilson's method of `dt`: the only stepping for which a
+    /// large body is condensed onto its contact ([`crate::dynamics::condensed`]).
+    pub fn fixed_implicit_steps(self, tolerance: Option<f64>) -> bool {
+        self == Method::Wilson && tolerance.is_none()
+    }
+
+    /// Whether the method integrates a scene without a body (the point scene, driven by a
+    /// prescribed slip history): only Wilson's method, whose implicit friction update is the
+    /// point scene's own.
+    pub fn steps_a_point(self) -> bool {
+        self == Method::Wilson
+    }
+
+    /// Smallest adaptive step (s) over a run of `t_end`: below this a run stops rather than
+    /// crawl. The Runge–Kutta methods may go down to a few roundings of the time itself (4 ulp
+    /// of `t_end`): they walk through the logarithmic singularity of `Λ` where a traction
+    /// changes sign (`R → 0` in the `-ln R` of eq. 5's denominator) with steps that grow
+    /// geometrically from picoseconds.
+    pub fn dt_min(self, t_end: f64) -> f64 {
+        match self {
+            Method::Wilson | Method::Central => t_end / MAX_STEPS,
+            Method::Tsit5 | Method::Sdirk4 => 4.0 * f64::EPSILON * t_end,
+        }
+    }
+
+    /// How a run steps, for people: `in N steps of dt s`, or the adaptive method and its
+    /// tolerance (`tolerance` as from [`Self::adaptive_tolerance`]).
+    pub fn describe(self, tolerance: Option<f64>, steps: u64, dt: f64) -> String {
+        match (self, tolerance) {
+            (Method::Wilson, None) => format!("in {steps} steps of {dt} s"),
+            (Method::Wilson, Some(tolerance)) => {
+                format!("in adaptive Wilson steps from {dt} s, tolerance {tolerance:e} per simulated second")
+            }
+            (Method::Central, _) => {
+                format!("in {steps} frames of {dt} s by central differences, each sub-stepped to the stability limit")
+            }
+            (Method::Tsit5, tolerance) => format!(
+                "by Tsitouras' 5(4) pair from a step of {dt} s, tolerance {:e} per step",
+                tolerance.unwrap_or(TSIT5_DEFAULT_TOLERANCE)
+            ),
+            (Method::Sdirk4, tolerance) => format!(
+                "by the L-stable SDIRK 4(3) from a step of {dt} s, tolerance {:e} per step",
+                tolerance.unwrap_or(SDIRK4_DEFAULT_TOLERANCE)
+            ),
+        }
+    }
+}
+
+/// How a run steps: the method and the numbers it needs, from the case's `[time]` and
+/// `[events]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stepping {
+    pub method: Method,
+    /// The fixed step, or the first adaptive one (s).
+    pub dt: f64,
+    /// The adaptive tolerance ([`Method::adaptive_tolerance`]); `None` for fixed steps.
+    pub tolerance: Option<f64>,
+    /// Largest and smallest adaptive step (s).
+    pub dt_max: f64,
+    pub dt_min: f64,
+    /// The slip rate (m/s) whose crossings the Runge–Kutta methods locate.
+    pub slip_rate_threshold: f64,
+}
+
+impl Stepping {
+    /// The integrator for `system`.
+    pub fn integrator(&self, system: &System) -> Box<dyn Integrator> {
+        let control = |tolerance| StepControl::new(tolerance, self.dt, self.dt_max, self.dt_min);
+        let rate_form =
+            |tableau, tolerance| Box::new(RateForm::new(tableau, control(tolerance), self.slip_rate_threshold));
+        match (self.method, self.tolerance) {
+            (Method::Wilson, None) => Box::new(Wilson::default()),
+            (Method::Wilson, Some(tolerance)) => Box::new(StepDoubling::new(control(tolerance))),
+            (Method::Central, _) => Box::new(CentralDifference::for_system(system)),
+            (Method::Tsit5, tolerance) => rate_form(Tableau::Tsit5, tolerance.unwrap_or(TSIT5_DEFAULT_TOLERANCE)),
+            (Method::Sdirk4, tolerance) => rate_form(Tableau::Sdirk4, tolerance.unwrap_or(SDIRK4_DEFAULT_TOLERANCE)),
+        }
+    }
+}

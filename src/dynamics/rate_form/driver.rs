@@ -1,0 +1,297 @@
+//! The adaptive driver of the Runge–Kutta methods on the rate form ([`super`]): steps sized by
+//! the embedded error estimate ([`StepControl`]), accepted states put back on the set the exact
+//! flow never leaves ([`System::project`]), and every crossing of the slip-rate threshold
+//! located so that a frame lies on each onset and end.
+
+use crate::dynamics::control::{AdaptiveError, ErrorScaling, StepControl};
+use crate::dynamics::error::StepError;
+use crate::dynamics::integrator::{Integrator, Statistics};
+use crate::dynamics::rate_form::sdirk4::{FOURTH_ORDER, Sdirk4};
+use crate::dynamics::rate_form::tsit5::{FIFTH_ORDER, Tsit5};
+use crate::dynamics::system::System;
+
+/// The Runge–Kutta tableau that integrates the rate form.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Tableau {
+    /// Tsitouras' explicit 5(4) pair ([`super::tsit5`]).
+    Tsit5,
+    /// Hairer and Wanner's L-stable SDIRK 4(3) ([`super::sdirk4`]).
+    Sdirk4,
+}
+
+/// Root-finding steps allowed when locating a crossing.
+const MAX_LOCATING_STEPS: usize = 60;
+
+/// The integrator's memory between steps: the state as one vector, its rate (the next step's
+/// first stage), and every point's `Λ` there.
+#[derive(Debug, Clone)]
+pub struct RungeKutta {
+    /// Step and time of the state `y` describes; another means [`System::state`] was changed
+    /// from outside, and `y` is rebuilt.
+    at: (u64, f64),
+    y: Vec<f64>,
+    rate: Vec<f64>,
+    lambda: Vec<f64>,
+    /// Physical scale of each component, added to its size in the error measure.
+    scale: Vec<f64>,
+    pair: Pair,
+}
+
+/// A method with its workspace.
+#[derive(Debug, Clone)]
+enum Pair {
+    Tsit5(Tsit5),
+    Sdirk4(Box<Sdirk4>),
+}
+
+impl Pair {
+    fn scaling(&self) -> ErrorScaling {
+        match self {
+            Pair::Tsit5(_) => FIFTH_ORDER,
+            Pair::Sdirk4(_) => FOURTH_ORDER,
+        }
+    }
+}
+
+/// One trial step: the new state, its rate and `Λ` there, and the error.
+struct Trial {
+    y: Vec<f64>,
+    rate: Vec<f64>,
+    lambda: Vec<f64>,
+    error: f64,
+}
+
+/// A Runge–Kutta method on the rate form, with its step-size control and its memory.
+pub struct RateForm {
+    tableau: Tableau,
+    control: StepControl,
+    /// The slip-rate level (m/s) whose crossings are located.
+    threshold: f64,
+    memory: Option<RungeKutta>,
+    statistics: Statistics,
+}
+
+impl RateForm {
+    pub fn new(tableau: Tableau, control: StepControl, threshold: f64) -> Self {
+        Self { tableau, control, threshold, memory: None, statistics: Statistics::default() }
+    }
+}
+
+impl Integrator for RateForm {
+    /// Takes one step of at most `limit` (s), its size chosen by the step-size control
+    /// (`tolerance` is the error allowed per step), shortened to end just past the first
+    /// instant where a contact point's plastic slip rate crosses the threshold. Returns the
+    /// step taken.
+    fn advance(&mut self, system: &mut System, limit: f64) -> Result<f64, AdaptiveError> {
+        let mut rk = match self.memory.take() {
+            Some(rk) if rk.at == (system.state.step, system.state.time) => rk,
+            _ => RungeKutta::new(system, self.tableau),
+        };
+        let result = attempts(system, &mut rk, &mut self.control, &mut self.statistics, limit, self.threshold);
+        if let Pair::Sdirk4(pair) = &mut rk.pair {
+            self.statistics.newton_iterations += std::mem::take(&mut pair.iterations);
+            self.statistics.factorizations += std::mem::take(&mut pair.linearizations);
+        }
+        self.memory = Some(rk);
+        result
+    }
+
+    fn statistics(&self) -> Statistics {
+        self.statistics
+    }
+}
+
+fn attempts(
+    system: &mut System,
+    rk: &mut RungeKutta,
+    control: &mut StepControl,
+    statistics: &mut Statistics,
+    limit: f64,
+    threshold: f64,
+) -> Result<f64, AdaptiveError> {
+    let t = system.state.time;
+    let scaling = rk.pair.scaling();
+    let tolerance = control.tolerance;
+    let mut rejected = false;
+    loop {
+        let h = control.next.min(limit);
+        // A failed implicit solve counts as an infinite error: the step shrinks.
+        let (trial, failure) = match rk.trial(system, t, h, tolerance) {
+            Ok(trial) => (Some(trial), None),
+            Err(failure) => (None, Some(failure)),
+        };
+        let error = trial.as_ref().map_or(f64::INFINITY, |trial| trial.error);
+        if let Some(trial) = trial.filter(|_| error <= tolerance) {
+            statistics.accepted += 1;
+            control.next = control.resize(h, error, scaling);
+            if rejected {
+                control.next = control.next.min(h);
+            }
+            let (h, trial) = rk.crossing(system, t, h, &trial, threshold, tolerance).unwrap_or((h, trial));
+            accept(system, rk, t + h, trial);
+            return Ok(h);
+        }
+        statistics.rejected += 1;
+        rejected = true;
+        control.next = control.resize(h, error, scaling).min(0.5 * h);
+        if control.next < control.dt_min {
+            return Err(match (error.is_finite(), failure) {
+                (true, _) => AdaptiveError::StepTooSmall { dt: control.next, dt_min: control.dt_min, error },
+                (false, Some(failure)) => AdaptiveError::Step(failure),
+                (false, None) => AdaptiveError::Step(StepError::NonFinite),
+            });
+        }
+    }
+}
+
+/// Makes `trial`, reached at `time`, the state.
+fn accept(system: &mut System, rk: &mut RungeKutta, time: f64, mut trial: Trial) {
+    if system.project(&mut trial.y) {
+        system.rate_form(time, &trial.y, &mut trial.rate, &mut trial.lambda);
+    }
+    let n = system.body.dofs();
+    let m = system.contact.points.len();
+    let s = &mut system.state;
+    s.displacement.copy_from_slice(&trial.y[..n]);
+    s.velocity.copy_from_slice(&trial.y[n..2 * n]);
+    s.acceleration.copy_from_slice(&trial.rate[n..2 * n]);
+    for (i, c) in s.contact.iter_mut().enumerate() {
+        let slip = trial.y[2 * n + 2 * m + i];
+        s.plastic_increment[i] = slip - c.plastic_slip;
+        c.traction_t = trial.y[2 * n + i];
+        c.structure = trial.y[2 * n + m + i];
+        c.plastic_slip = slip;
+    }
+    s.plastic_rate.clone_from(&trial.lambda);
+    s.time = time;
+    s.step += 1;
+    rk.at = (s.step, s.time);
+    rk.y = trial.y;
+    rk.rate = trial.rate;
+    rk.lambda = trial.lambda;
+}
+
+impl RungeKutta {
+    /// Reads the state of `dynamics` into one vector, for `method`.
+    fn new(dynamics: &System, tableau: Tableau) -> Self {
+        let s = &dynamics.state;
+        let n = dynamics.body.dofs();
+        let m = s.contact.len();
+        let mut y = Vec::with_capacity(2 * n + 3 * m);
+        y.extend_from_slice(&s.displacement);
+        y.extend_from_slice(&s.velocity);
+        y.extend(s.contact.iter().map(|c| c.traction_t));
+        y.extend(s.contact.iter().map(|c| c.structure));
+        y.extend(s.contact.iter().map(|c| c.plastic_slip));
+        // Scales: the displacement that changes a point's traction by its static strength
+        // (`δ = μ_s f_n / α_t`) for u and p; for v, the velocity whose kinetic energy in the
+        // contact's spring mode (`ω² = α_t w / m`) equals that spring's energy at `δ`, `ω δ`,
+        // or the drive's velocity if larger; the static strength for f_t; the range
+        // `μ_s/μ_k - 1` for 1/R*.
+        let params = &dynamics.contact.params;
+        let strength = params.mu_s * dynamics.contact.traction_n.iter().fold(0.0_f64, |a, &b| a.max(b));
+        let strength = if strength > 0.0 { strength } else { 1.0 };
+        let length = strength / params.alpha_t;
+        let omega = dynamics
+            .contact
+            .points
+            .iter()
+            .flat_map(|p| p.dofs.map(|d| (p.weight * params.alpha_t / dynamics.body.mass[d]).sqrt()))
+            .fold(0.0_f64, f64::max);
+        let mut scale = vec![length; n];
+        scale.extend(std::iter::repeat_n(dynamics.settings.velocity_scale.max(omega * length), n));
+        scale.extend(std::iter::repeat_n(strength, m));
+        scale.extend(std::iter::repeat_n((params.max_structure() - 1.0).max(f64::MIN_POSITIVE), m));
+        scale.extend(std::iter::repeat_n(length, m));
+        let mut rate = vec![0.0; y.len()];
+        let mut lambda = vec![0.0; m];
+        dynamics.rate_form(s.time, &y, &mut rate, &mut lambda);
+        let len = y.len();
+        let pair = match tableau {
+            Tableau::Tsit5 => Pair::Tsit5(Tsit5::new(len)),
+            Tableau::Sdirk4 => Pair::Sdirk4(Box::new(Sdirk4::new(len, m))),
+        };
+        Self { at: (s.step, s.time), y, rate, lambda, scale, pair }
+    }
+
+    /// One step of `h` from the current state at `t`; `tolerance` is the error allowed per step.
+    /// Fails where an implicit method's solve does.
+    fn trial(&mut self, dynamics: &mut System, t: f64, h: f64, tolerance: f64) -> Result<Trial, StepError> {
+        match &mut self.pair {
+            Pair::Tsit5(pair) => {
+                let mut lambda = vec![0.0; self.lambda.len()];
+                let error = pair.step(&self.y, &self.rate, t, h, &self.scale, |t, y, rate| {
+                    dynamics.rate_form(t, y, rate, &mut lambda)
+                });
+                let (y, rate) = (pair.solution().to_vec(), pair.solution_rate().to_vec());
+                Ok(Trial { y, rate, lambda, error })
+            }
+            Pair::Sdirk4(pair) => {
+                let error = pair.step(dynamics, &self.y, &self.rate, t, h, &self.scale, tolerance)?;
+                let (y, rate) = (pair.solution().to_vec(), pair.solution_rate().to_vec());
+                Ok(Trial { y, rate, lambda: pair.solution_lambda().to_vec(), error })
+            }
+        }
+    }
+
+    /// If the accepted `trial` of `h` from `t` carries some point's `Λ` across `level`, the
+    /// shortened step that ends just past the first such crossing, and its state.
+    fn crossing(
+        &mut self,
+        dynamics: &mut System,
+        t: f64,
+        h: f64,
+        trial: &Trial,
+        level: f64,
+        tolerance: f64,
+    ) -> Option<(f64, Trial)> {
+        let side = |lambda: f64| lambda > level;
+        // The point whose crossing comes first by linear interpolation of Λ over the step.
+        let (point, _) = self
+            .lambda
+            .iter()
+            .zip(&trial.lambda)
+            .enumerate()
+            .filter(|(_, (a, b))| side(**a) != side(**b))
+            .map(|(i, (a, b))| (i, (level - a) / (b - a)))
+            .min_by(|x, y| x.1.total_cmp(&y.1))?;
+        let before = side(self.lambda[point]);
+        let g = |lambda: &[f64]| lambda[point] - level;
+        // Illinois: regula falsi that halves the weight of an end kept twice in a row.
+        let (mut lo, mut g_lo) = (0.0, g(&self.lambda));
+        let (mut hi, mut g_hi) = (h, g(&trial.lambda));
+        let mut past: Option<Trial> = None;
+        let mut kept = 0_i32;
+        for _ in 0..MAX_LOCATING_STEPS {
+            if hi - lo <= 4.0 * f64::EPSILON * (t + hi).abs() {
+                break;
+            }
+            let mut s = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+            if !(s > lo && s < hi) {
+                s = 0.5 * (lo + hi);
+            }
+            let Ok(attempt) = self.trial(dynamics, t, s, tolerance) else { break };
+            let value = g(&attempt.lambda);
+            if !value.is_finite() {
+                break;
+            }
+            if side(attempt.lambda[point]) == before {
+                lo = s;
+                g_lo = value;
+                if kept == -1 {
+                    g_hi *= 0.5;
+                }
+                kept = -1;
+            } else {
+                hi = s;
+                g_hi = value;
+                past = Some(attempt);
+                if kept == 1 {
+                    g_lo *= 0.5;
+                }
+                kept = 1;
+            }
+        }
+        past.map(|trial| (hi, trial))
+    }
+}

@@ -1,0 +1,202 @@
+//! The dynamic system of the paper's §2.2: a linear elastic body `M a + K u = f⁰ + f_c` whose
+//! contact forces `f_c` follow the friction law, with what every time integrator shares.
+
+use crate::dynamics::body::LinearBody;
+use crate::dynamics::contact::ContactBoundary;
+use crate::dynamics::energy::EnergyLedger;
+use crate::dynamics::error::StepError;
+use crate::dynamics::newton::max_abs;
+use crate::dynamics::operator::Operator;
+use crate::dynamics::settings::Settings;
+use crate::dynamics::state::State;
+use crate::friction::ContactState;
+
+/// The assembled model: the linear body, its frictional contact, the current [`State`], and
+/// what the methods share (Newton's operator, the energy ledger, the count of split steps).
+/// The integrators ([`super::integrator`]) advance it; each keeps its own memory.
+pub struct System {
+    pub body: LinearBody,
+    pub contact: ContactBoundary,
+    pub settings: Settings,
+    pub state: State,
+    /// Each contact point's tangential traction in the initial equilibrium (Pa).
+    pub(crate) initial_traction: Vec<f64>,
+    /// `f_c(0)`: the contact forces of the initial equilibrium.
+    pub(crate) initial_contact_force: Vec<f64>,
+    /// Newton's operator `c₀ M + K + K_c`, built at its first use (Tsitouras' pair and
+    /// central differences never need it).
+    operator: Option<Operator>,
+    ledger: Option<EnergyLedger>,
+    /// `Σ w (μ_k f_n)² / 2α_t`: the contact springs' energy at kinetic strength, the scale the
+    /// energy check uses before much work has been done.
+    energy_scale: f64,
+    split_steps: u64,
+}
+
+/// A saved state of [`System`] (see [`System::snapshot`]).
+#[derive(Clone)]
+pub(crate) struct Snapshot {
+    pub(crate) state: State,
+    ledger: Option<EnergyLedger>,
+}
+
+impl System {
+    /// Sets up the system at rest in its initial equilibrium.
+    pub fn new(body: LinearBody, contact: ContactBoundary, settings: Settings) -> Result<Self, StepError> {
+        let n = body.dofs();
+        let states: Vec<ContactState> = contact
+            .traction_n
+            .iter()
+            .map(|&fn_| ContactState::initial(&contact.params, fn_, contact.loading_direction))
+            .collect();
+        let initial_traction: Vec<f64> = states.iter().map(|s| s.traction_t).collect();
+        let mut initial_contact_force = vec![0.0; n];
+        for (point, s) in contact.points.iter().zip(&states) {
+            point.scatter(point.weight * s.traction_t, &mut initial_contact_force);
+        }
+        let n_points = contact.points.len();
+        let p = &contact.params;
+        let energy_scale = contact
+            .points
+            .iter()
+            .zip(&contact.traction_n)
+            .map(|(point, f_n)| point.weight * (p.mu_k * f_n).powi(2) / (2.0 * p.alpha_t))
+            .sum();
+        let mut system = Self {
+            state: State {
+                time: 0.0,
+                step: 0,
+                displacement: vec![0.0; n],
+                velocity: vec![0.0; n],
+                acceleration: vec![0.0; n],
+                contact: states,
+                plastic_increment: vec![0.0; n_points],
+                plastic_rate: Vec::new(),
+            },
+            body,
+            contact,
+            settings,
+            initial_traction,
+            initial_contact_force,
+            operator: None,
+            ledger: None,
+            energy_scale,
+            split_steps: 0,
+        };
+        if system.settings.energy_tolerance.is_some() {
+            system.track_energy();
+        }
+        Ok(system)
+    }
+
+    /// Advances by `dt` as two steps of `dt/2` taken by `half_step`, reported as one step: the
+    /// step counter moves by one and `plastic_increment` holds the slip of both halves.
+    pub(crate) fn two_halves(
+        &mut self,
+        dt: f64,
+        mut half_step: impl FnMut(&mut Self, f64) -> Result<(), StepError>,
+    ) -> Result<(), StepError> {
+        half_step(self, 0.5 * dt)?;
+        let first = self.state.plastic_increment.clone();
+        half_step(self, 0.5 * dt)?;
+        for (p, f) in self.state.plastic_increment.iter_mut().zip(first) {
+            *p += f;
+        }
+        self.state.step -= 1;
+        Ok(())
+    }
+
+    /// Everything a step changes, to undo a trial step.
+    pub(crate) fn snapshot(&self) -> Snapshot {
+        Snapshot { state: self.state.clone(), ledger: self.ledger }
+    }
+
+    /// Returns to `snapshot`.
+    pub(crate) fn restore(&mut self, snapshot: Snapshot) {
+        self.state = snapshot.state;
+        self.ledger = snapshot.ledger;
+    }
+
+    /// Assembles and factors `c₀ M + K + K_c` unless the factored one is the same: Newton's
+    /// operator of Wilson's step (`c₀ = 6/τ²`) and of the implicit Runge–Kutta stages
+    /// ([`crate::dynamics::sdirk`], `c₀ = 1/(hγ)²`). `contact_stiffness` holds each point's `-w ∂f_t/∂ū`.
+    pub(crate) fn factor_operator(&mut self, c0: f64, contact_stiffness: &[f64]) -> Result<(), StepError> {
+        let operator = match self.operator.as_mut() {
+            Some(operator) => operator,
+            None => self.operator.insert(Operator::new(&self.body, &self.contact).map_err(StepError::Factor)?),
+        };
+        operator.factor(&self.body, &self.contact, c0, contact_stiffness).map_err(StepError::Factor)
+    }
+
+    /// Solves with the operator [`Self::factor_operator`] factored last.
+    pub(crate) fn solve_operator(&self, rhs: &mut [f64]) {
+        self.operator.as_ref().expect("the operator is factored before it is solved with").solve_in_place(rhs);
+    }
+
+    /// Keeps an [`EnergyLedger`] from now on (costs one product with `K` per step).
+    pub fn track_energy(&mut self) {
+        let mut ledger = EnergyLedger::default();
+        self.refresh_stored_energy(&mut ledger);
+        ledger.initial = ledger.kinetic + ledger.strain + ledger.contact_elastic;
+        self.ledger = Some(ledger);
+    }
+
+    /// The energy balance so far, if tracked.
+    pub fn energy(&self) -> Option<EnergyLedger> {
+        self.ledger
+    }
+
+    /// Adds the step from `old` to the current state (of length `dt`) to the ledger, if one is
+    /// kept, and fails if the integrator has created more energy than `energy_tolerance`
+    /// allows.
+    pub(crate) fn account_energy(&mut self, old: &State, dt: f64) -> Result<(), StepError> {
+        if let Some(mut ledger) = self.ledger.take() {
+            ledger.add_step(&self.body, &self.contact, old, &self.state, dt);
+            self.refresh_stored_energy(&mut ledger);
+            self.ledger = Some(ledger);
+            if let Some(tolerance) = self.settings.energy_tolerance {
+                // Early on, measured against the contact's strength energy rather than the little
+                // work done so far.
+                let reference = (ledger.initial + ledger.work_base + ledger.work_load).max(self.energy_scale);
+                let share = -ledger.numerical() / reference;
+                if share > tolerance {
+                    return Err(StepError::EnergyCreated { share, tolerance });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn refresh_stored_energy(&self, ledger: &mut EnergyLedger) {
+        ledger.refresh(&self.body, &self.contact, &self.state, &self.initial_traction, &self.initial_contact_force);
+    }
+
+    /// Counts a step (or half step) that had to be split in two to converge.
+    pub(crate) fn count_split(&mut self) {
+        self.split_steps += 1;
+    }
+
+    /// How many steps (or half steps) so far had to be split in two to converge.
+    pub fn split_steps(&self) -> u64 {
+        self.split_steps
+    }
+
+    /// Largest nodal imbalance of the total equation `M a + K u = f⁰ + f_c - f_c(0)` in the
+    /// current state (N/m or Pa), computed when asked. Wilson's method enforces equilibrium at
+    /// `t_n + θΔt`, so this is the interpolation error, not an accumulated drift.
+    pub fn imbalance(&self) -> f64 {
+        let s = &self.state;
+        let mut imbalance = vec![0.0; self.body.dofs()];
+        self.body.stiffness.mul_vec(&s.displacement, &mut imbalance);
+        for (i, e) in imbalance.iter_mut().enumerate() {
+            *e = s.time * self.body.load_rate[i]
+                - self.initial_contact_force[i]
+                - self.body.mass[i] * s.acceleration[i]
+                - *e;
+        }
+        for (point, c) in self.contact.points.iter().zip(&s.contact) {
+            point.scatter(point.weight * c.traction_t, &mut imbalance);
+        }
+        max_abs(&imbalance)
+    }
+}

@@ -1,0 +1,226 @@
+//! The contract between the scenes, the run loop and the sinks: what a scene is made of
+//! ([`Layout`]), what one step of it shows ([`Frame`], [`SegmentSample`], the paper's `f_t`,
+//! `R`, `R*`, `1/R*` and slip per segment), what the sinks ask to be computed ([`Needs`]), and
+//! how a run ended ([`Ending`]). Nothing here computes or writes: scenes fill frames, sinks
+//! read them.
+
+use std::fmt;
+
+use serde::{Deserialize, Serialize};
+
+/// What the sinks of a run need in each frame.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Needs {
+    /// Per-segment `R`, `R*`, `1/R*`, `f_n` (the catalog needs only traction, slip and rate).
+    pub segment_state: bool,
+    /// Contact-surface node displacements.
+    pub surface_nodes: bool,
+    /// Displacement of every mesh node (spatial views).
+    pub mesh: bool,
+}
+
+impl Needs {
+    pub fn union(self, other: Needs) -> Needs {
+        Needs {
+            segment_state: self.segment_state || other.segment_state,
+            surface_nodes: self.surface_nodes || other.surface_nodes,
+            mesh: self.mesh || other.mesh,
+        }
+    }
+}
+
+/// The kinds of scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SceneKind {
+    Point,
+    SpringBlock,
+    Block,
+}
+
+impl SceneKind {
+    /// The case file's name for it.
+    pub fn name(self) -> &'static str {
+        match self {
+            SceneKind::Point => "point",
+            SceneKind::SpringBlock => "spring_block",
+            SceneKind::Block => "block",
+        }
+    }
+
+    /// Whether frames of this scene carry a block displacement and velocity.
+    pub fn has_block(self) -> bool {
+        self == SceneKind::SpringBlock
+    }
+
+    /// Unit of the total friction force: per unit thickness for a block, per unit area else.
+    pub fn force_unit(self) -> &'static str {
+        match self {
+            SceneKind::Block => "N/m",
+            _ => "Pa",
+        }
+    }
+}
+
+impl fmt::Display for SceneKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// What a scene is made of, for sinks that label and place things.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Layout {
+    pub kind: SceneKind,
+    /// Contact segments from the left, with their extent along x (m).
+    pub segments: Vec<SegmentInfo>,
+    /// Contact-surface nodes from the left, with their x (m). Empty without a body.
+    pub surface_nodes: Vec<NodeInfo>,
+    /// The mesh, for block scenes.
+    pub mesh: Option<crate::fem::StructuredMesh>,
+    /// The driving velocity (m/s).
+    pub driving_velocity: f64,
+    /// Whether the segments' slip rates are instantaneous values at each frame's time (the
+    /// Runge–Kutta integrator's `Λ`) rather than means `Δp/Δt` over the step that led to it.
+    #[serde(default)]
+    pub instantaneous_slip_rate: bool,
+}
+
+/// A contact segment.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SegmentInfo {
+    pub left: f64,
+    pub right: f64,
+    /// Probe name, if the case gives one.
+    pub name: Option<String>,
+}
+
+/// A contact-surface node.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NodeInfo {
+    pub x: f64,
+    pub name: Option<String>,
+}
+
+/// One segment at one instant: Gauss-point values averaged over the segment.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SegmentSample {
+    /// Tangential traction `f_t` (Pa).
+    pub traction_t: f64,
+    /// Normal traction `f_n` (Pa).
+    pub traction_n: f64,
+    /// Normal sliding ratio `R`.
+    pub sliding_ratio: f64,
+    /// `R*`.
+    pub r_star: f64,
+    /// Degree of structure `1/R*`.
+    pub structure: f64,
+    /// Plastic slip rate over the last step, `Δp/Δt` (m/s).
+    pub slip_rate: f64,
+    /// Accumulated plastic slip `p` (m).
+    pub slip: f64,
+}
+
+/// Everything a sink may observe after a step (or at `t = 0`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Frame {
+    pub step: u64,
+    /// Time (s).
+    pub time: f64,
+    /// The step that led here (s); 0 for the initial frame.
+    pub dt: f64,
+    pub segments: Vec<SegmentSample>,
+    /// `(u_x, u_y)` of the contact-surface nodes (m), when needed.
+    pub surface_nodes: Vec<[f64; 2]>,
+    /// `(u_x, u_y)` of every mesh node (m), top row included, when needed.
+    pub mesh: Vec<[f64; 2]>,
+    /// Total friction force `Σ w f_t` (N/m for a block, Pa for unit-area scenes).
+    pub friction_force: f64,
+    /// Displacement of the base (m); for a spring-block, of the spring's far end.
+    pub base_displacement: f64,
+    /// Block displacement and velocity (spring-block scenes).
+    pub block: Option<[f64; 2]>,
+}
+
+/// A per-segment quantity: `contact/segments/{k}/{name}`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Quantity {
+    #[serde(rename = "traction_t")]
+    TractionT,
+    #[serde(rename = "traction_n")]
+    TractionN,
+    #[serde(rename = "R")]
+    R,
+    #[serde(rename = "R_star")]
+    RStar,
+    #[serde(rename = "structure")]
+    Structure,
+    #[serde(rename = "slip_rate")]
+    SlipRate,
+    #[serde(rename = "slip")]
+    Slip,
+}
+
+impl Quantity {
+    pub const ALL: [Quantity; 7] = [
+        Quantity::TractionT,
+        Quantity::TractionN,
+        Quantity::R,
+        Quantity::RStar,
+        Quantity::Structure,
+        Quantity::SlipRate,
+        Quantity::Slip,
+    ];
+
+    /// Last component of the entity path.
+    pub fn name(self) -> &'static str {
+        match self {
+            Quantity::TractionT => "traction_t",
+            Quantity::TractionN => "traction_n",
+            Quantity::R => "R",
+            Quantity::RStar => "R_star",
+            Quantity::Structure => "structure",
+            Quantity::SlipRate => "slip_rate",
+            Quantity::Slip => "slip",
+        }
+    }
+
+    /// Symbol and unit, for series names.
+    pub fn label(self) -> &'static str {
+        match self {
+            Quantity::TractionT => "f_t (Pa)",
+            Quantity::TractionN => "f_n (Pa)",
+            Quantity::R => "R",
+            Quantity::RStar => "R*",
+            Quantity::Structure => "1/R*",
+            Quantity::SlipRate => "slip rate (m/s)",
+            Quantity::Slip => "slip (m)",
+        }
+    }
+
+    /// The value in a segment sample.
+    pub fn of(self, s: &SegmentSample) -> f64 {
+        match self {
+            Quantity::TractionT => s.traction_t,
+            Quantity::TractionN => s.traction_n,
+            Quantity::R => s.sliding_ratio,
+            Quantity::RStar => s.r_star,
+            Quantity::Structure => s.structure,
+            Quantity::SlipRate => s.slip_rate,
+            Quantity::Slip => s.slip,
+        }
+    }
+
+    /// Whether the scene must compute the full segment state for it.
+    pub fn needs_state(self) -> bool {
+        matches!(self, Quantity::TractionN | Quantity::R | Quantity::RStar | Quantity::Structure)
+    }
+}
+
+/// How a run ended, as the sinks are told.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ending {
+    Completed,
+    Failed,
+    Interrupted,
+}
