@@ -1,4 +1,4 @@
-//! Work-precision benchmark (issue 6): error against wall time for the spring-block and the
+//! Work-precision benchmark: error against wall time for the spring-block and the
 //! paper case, across step sizes (fixed Wilson-θ) and tolerances (adaptive Wilson-θ by step
 //! doubling, Tsitouras' explicit 5(4) pair and the L-stable SDIRK 4(3) on the rate form).
 //!

@@ -1,4 +1,4 @@
-//! The plane-strain block (issue 3): closed forms and hand derivations.
+//! The plane-strain block: closed forms and hand derivations.
 
 use slipfront::case::SceneSpec;
 use slipfront::case::{self, Case};

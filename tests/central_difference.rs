@@ -1,4 +1,4 @@
-//! Explicit central differences ([`slipfront::dynamics::central`], issue 6): their stability
+//! Explicit central differences ([`slipfront::dynamics::central`]): their stability
 //! limit against a dense eigensolver, and their second-order convergence on the paper case
 //! against Tsitouras' 5(4) pair at a tight tolerance, a different method on a different form of
 //! the equations (the rate form).

@@ -1,4 +1,4 @@
-//! Every validation rule (issue 2): a malformed case or `--set` gives the exact message and
+//! Every validation rule: a malformed case or `--set` gives the exact message and
 //! exit code 2, before anything runs.
 
 use std::path::PathBuf;

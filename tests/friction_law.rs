@@ -1,4 +1,4 @@
-//! The friction law alone (issue 2): the implicit update against the rate form, closed forms and
+//! The friction law alone: the implicit update against the rate form, closed forms and
 //! independent integrations.
 
 use nalgebra::Vector2;

@@ -1,4 +1,4 @@
-//! Property tests of the friction update (issue 7): random parameters, states and increments.
+//! Property tests of the friction update: random parameters, states and increments.
 //!
 //! - Invariants: an update either returns a state with `R ∈ [0, 1]`, `1/R* ∈ [1, μ_s/μ_k]`,
 //!   finite traction and `Δp ≥ 0`, or says the step is too large; it never returns a state

@@ -1,4 +1,4 @@
-//! MCAP logs (issue 5): the protobuf schema, the round trip run → .mcap → replay → .rrd, the
+//! MCAP logs: the protobuf schema, the round trip run → .mcap → replay → .rrd, the
 //! official readers, and damaged files.
 
 use std::path::{Path, PathBuf};

@@ -1,4 +1,4 @@
-//! The paper's §3 analysis reproduced (issue 3): its four observations asserted from the event
+//! The paper's §3 analysis reproduced: its four observations asserted from the event
 //! catalogs of the shipped cases, the time-step convergence of the paper case, and its energy
 //! balance. `cargo test --release --test paper_case -- --nocapture` prints the README's table.
 

@@ -1,4 +1,4 @@
-//! Rerun recordings (issue 4): the schema pinned, values equal to the run's, read by the
+//! Rerun recordings: the schema pinned, values equal to the run's, read by the
 //! official tools, `check` catching damage, the stored blueprint, and the stuck limit read back
 //! from a recording.
 

@@ -1,4 +1,4 @@
-//! The L-stable SDIRK 4(3) on the rate form ([`slipfront::dynamics::sdirk`], issue 6) against
+//! The L-stable SDIRK 4(3) on the rate form ([`slipfront::dynamics::rate_form::sdirk4`]) against
 //! Tsitouras' explicit 5(4) pair at a tight tolerance on the paper case: the same equations, an
 //! independent method (explicit, fifth order, no Newton solves).
 

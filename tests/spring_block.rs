@@ -1,4 +1,4 @@
-//! The spring-block scene (issue 2) against an independent solution of the same ODEs, the
+//! The spring-block scene against an independent solution of the same ODEs, the
 //! Coulomb limit, and the symmetry of the drive.
 
 use slipfront::case::{self, Case};

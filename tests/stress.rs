@@ -1,4 +1,4 @@
-//! The stress matrix (issue 7): the shipped spring-block and paper cases pushed to the ends of
+//! The stress matrix: the shipped spring-block and paper cases pushed to the ends of
 //! every parameter's range. Each run must finish with finite fields, keep every contact point's
 //! `R` in [0, 1] and `1/R*` in [1, μ_s/μ_k] after every step, and keep the energy residual
 //! bounded: the integrator may dissipate no more than the work put in, and create no more than

@@ -1,4 +1,4 @@
-//! The step's Newton iteration condensed onto the contact's degrees of freedom (issue 6).
+//! The step's Newton iteration condensed onto the contact's degrees of freedom.
 //!
 //! The body is linear and only the contact is not. With `A = 6/τ² M + K`, fixed for a given
 //! `τ = θΔt`, the equation of motion (14) at `t_n + τ` reads

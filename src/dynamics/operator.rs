@@ -2,7 +2,7 @@
 //! pattern and factored.
 //!
 //! Wilson's step (`c₀ = 6/τ²`, [`crate::dynamics::wilson`]) and the SDIRK stages (`c₀ = 1/(hγ)²`,
-//! [`crate::dynamics::sdirk`]) both solve with it. `K_c = -Σ w Ñᵀ (∂f_t/∂ū) Ñ` is eq. (14)'s contact
+//! [`crate::dynamics::rate_form::sdirk4`]) both solve with it. `K_c = -Σ w Ñᵀ (∂f_t/∂ū) Ñ` is eq. (14)'s contact
 //! tangent. The explicit integrators never need it, so [`crate::dynamics::Dynamics`] builds it at its
 //! first use: on a fine mesh the pattern is as large as `K`'s, and its symbolic analysis takes
 //! as long as the rest of the set-up.

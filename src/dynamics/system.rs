@@ -119,7 +119,7 @@ impl System {
 
     /// Assembles and factors `c₀ M + K + K_c` unless the factored one is the same: Newton's
     /// operator of Wilson's step (`c₀ = 6/τ²`) and of the implicit Runge–Kutta stages
-    /// ([`crate::dynamics::sdirk`], `c₀ = 1/(hγ)²`). `contact_stiffness` holds each point's `-w ∂f_t/∂ū`.
+    /// ([`crate::dynamics::rate_form::sdirk4`], `c₀ = 1/(hγ)²`). `contact_stiffness` holds each point's `-w ∂f_t/∂ū`.
     pub(crate) fn factor_operator(&mut self, c0: f64, contact_stiffness: &[f64]) -> Result<(), StepError> {
         let operator = match self.operator.as_mut() {
             Some(operator) => operator,

@@ -1,7 +1,7 @@
 //! The rate form integrated by an L-stable singly diagonally implicit Runge–Kutta method of
 //! order 4 with an embedded third-order solution.
 //!
-//! Tsitouras' pair ([`crate::dynamics::runge_kutta`]) integrates the paper's rate equations explicitly, so
+//! Tsitouras' pair ([`crate::dynamics::rate_form`]) integrates the paper's rate equations explicitly, so
 //! its steps cannot outgrow the undamped contact mode (`hω ≈ 1`) however slowly the block is
 //! loaded. This module integrates the same system `y = (u, v, f_t, 1/R*, p)`, with the same
 //! right-hand side, by the SDIRK method of Hairer and Wanner (*Solving Ordinary Differential
@@ -24,7 +24,7 @@
 //! eliminated, the same `-w ∂f_t/∂Δū` the implicit friction update gives Wilson's step.
 //!
 //! Threshold crossings of the slip rate are located as for Tsitouras' pair
-//! ([`crate::dynamics::runge_kutta`]).
+//! ([`crate::dynamics::rate_form`]).
 
 use crate::dynamics::control::ErrorScaling;
 use crate::dynamics::error::StepError;
