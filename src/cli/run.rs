@@ -58,53 +58,88 @@ pub struct RunArgs {
     pub quiet: bool,
 }
 
-/// Runs `slipfront run`.
+/// Runs `slipfront run`: the case read and checked, its outputs opened, the loop run with
+/// SIGINT and SIGTERM caught, and the outcome reported.
 pub fn command(args: RunArgs) -> ExitCode {
-    let case = match case::load(&args.case, &args.overrides) {
-        Ok(case) => case,
-        Err(e) => return fail(EXIT_INVALID, format!("{}: {e}", args.case.display())),
+    let (case, outputs) = match prepare(&args) {
+        Ok(prepared) => prepared,
+        Err(exit) => return exit,
     };
-    if let Err(e) = fits_in_memory(&case) {
-        return fail(EXIT_INVALID, format!("{}: {e}", args.case.display()));
-    }
-    let stem = args.case.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "case".into());
-    if let Err(e) = std::fs::create_dir_all(&args.out_dir) {
-        return fail(EXIT_INVALID, format!("cannot create output folder {}: {e}", args.out_dir.display()));
-    }
-    if let Err(e) = check_writable(&args.out_dir) {
-        return fail(EXIT_INVALID, format!("output folder {} is not writable: {e}", args.out_dir.display()));
-    }
-    let events_path = args.events.clone().unwrap_or_else(|| args.out_dir.join(format!("{stem}.events.csv")));
-    let ruptures_path = ruptures_path_for(&events_path);
     let mut scene = match scene::build(&case) {
         Ok(scene) => scene,
         Err(e) => return fail(EXIT_FAILED, e),
     };
-    let rrd_path = if args.no_rrd {
-        None
-    } else {
-        Some(args.rrd.clone().unwrap_or_else(|| args.out_dir.join(format!("{stem}.rrd"))))
+    let mut sinks = match outputs.sinks(&args, &case) {
+        Ok(sinks) => sinks,
+        Err(exit) => return exit,
     };
-    let viewer = args.viewer.viewer();
-    let stream = match open_stream(rrd_path.as_deref(), &viewer, &stem) {
-        Ok(stream) => stream,
-        Err(e) => return fail(EXIT_INVALID, e),
-    };
-    let plan = RecordingPlan::for_case(&stem, &case);
-    let mut sinks: Vec<Box<dyn Sink>> =
-        vec![Box::new(CatalogSink::new(events_path.clone(), Some(ruptures_path.clone())))];
-    if let Some(path) = &args.mcap {
-        match McapSink::create(path, plan.clone()) {
-            Ok(sink) => sinks.push(Box::new(sink)),
-            Err(e) => return fail(EXIT_INVALID, e),
+    let (interrupt, signal) = catch_signals();
+    let outcome = run(
+        scene.as_mut(),
+        &case.time,
+        &mut sinks,
+        LoopOptions { progress: !args.quiet, interrupt: Some(&interrupt), ..LoopOptions::for_case(&case) },
+    );
+    let written = outputs.written(&args, scene.layout().kind == SceneKind::Block);
+    report(&args, &case, outcome, &written, signal.load(Ordering::SeqCst), scene.time())
+}
+
+/// Where a run's outputs go.
+struct Outputs {
+    stem: String,
+    events: PathBuf,
+    ruptures: PathBuf,
+    rrd: Option<PathBuf>,
+}
+
+/// Reads and checks the case and the output folder, and names the outputs.
+fn prepare(args: &RunArgs) -> Result<(case::Case, Outputs), ExitCode> {
+    let case = case::load(&args.case, &args.overrides)
+        .map_err(|e| fail(EXIT_INVALID, format!("{}: {e}", args.case.display())))?;
+    fits_in_memory(&case).map_err(|e| fail(EXIT_INVALID, format!("{}: {e}", args.case.display())))?;
+    let stem = args.case.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "case".into());
+    std::fs::create_dir_all(&args.out_dir)
+        .map_err(|e| fail(EXIT_INVALID, format!("cannot create output folder {}: {e}", args.out_dir.display())))?;
+    check_writable(&args.out_dir)
+        .map_err(|e| fail(EXIT_INVALID, format!("output folder {} is not writable: {e}", args.out_dir.display())))?;
+    let events = args.events.clone().unwrap_or_else(|| args.out_dir.join(format!("{stem}.events.csv")));
+    let ruptures = ruptures_path_for(&events);
+    let rrd = (!args.no_rrd).then(|| args.rrd.clone().unwrap_or_else(|| args.out_dir.join(format!("{stem}.rrd"))));
+    Ok((case, Outputs { stem, events, ruptures, rrd }))
+}
+
+impl Outputs {
+    /// The catalog's CSV writer, the MCAP log and the Rerun recording, as the arguments ask.
+    fn sinks(&self, args: &RunArgs, case: &case::Case) -> Result<Vec<Box<dyn Sink>>, ExitCode> {
+        let stream =
+            open_stream(self.rrd.as_deref(), &args.viewer.viewer(), &self.stem).map_err(|e| fail(EXIT_INVALID, e))?;
+        let plan = RecordingPlan::for_case(&self.stem, case);
+        let mut sinks: Vec<Box<dyn Sink>> =
+            vec![Box::new(CatalogSink::new(self.events.clone(), Some(self.ruptures.clone())))];
+        if let Some(path) = &args.mcap {
+            sinks.push(Box::new(McapSink::create(path, plan.clone()).map_err(|e| fail(EXIT_INVALID, e))?));
         }
+        if let Some(stream) = stream {
+            sinks.push(Box::new(RerunSink::new(stream, plan)));
+        }
+        Ok(sinks)
     }
-    if let Some(stream) = stream {
-        sinks.push(Box::new(RerunSink::new(stream, plan)));
+
+    /// The files written, for the summary.
+    fn written(&self, args: &RunArgs, block: bool) -> String {
+        let mut outputs: Vec<String> = self.rrd.iter().chain(&args.mcap).map(|p| p.display().to_string()).collect();
+        outputs.push(self.events.display().to_string());
+        if block {
+            outputs.push(self.ruptures.display().to_string());
+        }
+        outputs.join(", ")
     }
-    // SIGINT and SIGTERM stop the loop after the current step; the sinks then finish their
-    // files, and the exit code is 128 + the signal's number, as a shell expects. A second
-    // signal while finishing ends the process at once.
+}
+
+/// SIGINT and SIGTERM stop the loop after the current step; the sinks then finish their
+/// files, and the exit code is 128 + the signal's number, as a shell expects. A second
+/// signal while finishing ends the process at once. Returns the stop flag and the signal.
+fn catch_signals() -> (Arc<AtomicBool>, Arc<AtomicUsize>) {
     let interrupt = Arc::new(AtomicBool::new(false));
     let signal = Arc::new(AtomicUsize::new(0));
     for number in [SIGINT, SIGTERM] {
@@ -113,18 +148,11 @@ pub fn command(args: RunArgs) -> ExitCode {
         let _ = signal_hook::flag::register(number, interrupt.clone());
         let _ = signal_hook::flag::register_usize(number, signal.clone(), number as usize);
     }
-    let outcome = run(
-        scene.as_mut(),
-        &case.time,
-        &mut sinks,
-        LoopOptions { progress: !args.quiet, interrupt: Some(&interrupt), ..LoopOptions::for_case(&case) },
-    );
-    let mut outputs: Vec<String> = rrd_path.iter().chain(&args.mcap).map(|p| p.display().to_string()).collect();
-    outputs.push(events_path.display().to_string());
-    if scene.layout().kind == SceneKind::Block {
-        outputs.push(ruptures_path.display().to_string());
-    }
-    let written = outputs.join(", ");
+    (interrupt, signal)
+}
+
+/// The summary line of a completed run, or the error of one that was not, and its exit code.
+fn report(args: &RunArgs, case: &case::Case, outcome: Outcome, written: &str, signal: usize, time: f64) -> ExitCode {
     match outcome {
         Outcome::Completed { steps, rejected, wall, catalog, .. } => {
             if !args.quiet {
@@ -146,17 +174,11 @@ pub fn command(args: RunArgs) -> ExitCode {
             ExitCode::SUCCESS
         }
         Outcome::Interrupted { steps, .. } => {
-            let (code, name) = match signal.load(Ordering::SeqCst) {
+            let (code, name) = match signal {
                 n if n == SIGTERM as usize => (128 + SIGTERM as u8, "SIGTERM"),
                 _ => (EXIT_INTERRUPTED, "SIGINT"),
             };
-            fail(
-                code,
-                format!(
-                    "interrupted by {name} after {steps} steps (t = {} s); outputs finished: {written}",
-                    scene.time()
-                ),
-            )
+            fail(code, format!("interrupted by {name} after {steps} steps (t = {time} s); outputs finished: {written}"))
         }
         Outcome::Failed { error, .. } => {
             fail(EXIT_FAILED, format!("run failed at {error}; outputs hold every step before it: {written}"))
