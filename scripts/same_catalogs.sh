@@ -109,7 +109,14 @@ mkdir -p "$out"
 build_binary() {
     local src=$1 dest=$2 log=$3 artifacts exe
     rm -f "$target/release/slipfront"
-    rm -rf "$target"/release/.fingerprint/slipfront-*
+    # The release lib and bin units only (the checkouts share their hashes: cargo would judge
+    # the work tree fresh by the mtimes of REV's build and keep REV's crate).
+    local fp
+    for fp in "$target"/release/.fingerprint/slipfront-*; do
+        if [[ -e "$fp/lib-slipfront" || -e "$fp/bin-slipfront" ]]; then
+            rm -rf "$fp"
+        fi
+    done
     echo "  cargo build --release in $src (log: $log)" >&2
     if ! (cd "$src" && CARGO_TARGET_DIR="$target" cargo build --release --bin slipfront \
         --message-format=json-render-diagnostics >"$log.json" 2>"$log"); then
@@ -173,55 +180,77 @@ integrator_sets() {
     esac
 }
 
-# How case $1 runs with integrator $2: extra --set arguments (possibly none), or "skip".
-# Measured on 2 cores so that one binary's whole matrix stays near 3 minutes (see --help).
+# How case $1 runs with integrator $2: extra --set arguments (none: the case's full t_end), or
+# "skip". Chosen from single runs of e8215ae on this 2-core machine (seconds in brackets) so
+# that one binary's whole matrix takes ~2 minutes with 2 jobs. The 10 x 1 cases run their full
+# 1000 s (1-4 s each) but for adaptive Wilson, slow through slip at 1e-6 (paper 281 s), which
+# stops just past its first events (paper and triangular_inverted: 4 events by 440 s [4 s];
+# uniform_low: 6 by 360 s [3 s]; uniform_high: 10 by 950 s [2 s]). scaling_100x10 (first slip
+# at 421.6 s): central differences the full 1000 s (493 events) [12 s]; the others until 425 s
+# (20 events) [wilson 44 s, tsit5 35 s, sdirk4 14 s]; adaptive Wilson 10 s [6 s]. The finer
+# meshes run only a few seconds of loading (no event: the catalogs are headers, the runs prove
+# the same code paths complete) and skip what their setup alone makes slow: adaptive Wilson on
+# 300 x 30 takes 21 s for 0.2 s, and on 1000 x 100 SDIRK4 takes 106 s and adaptive Wilson 169 s
+# for 0.01 s.
 case_plan() {
     case "$1:$2" in
-        scaling_1000x100:central) echo "--set time.t_end=2" ;;
+        scaling_1000x100:central) echo "--set time.t_end=1" ;;          # [3 s]
+        scaling_1000x100:tsit5) echo "--set time.t_end=0.1" ;;          # [7 s]
+        scaling_1000x100:wilson) echo "--set time.t_end=0.05" ;;        # [16-20 s]
         scaling_1000x100:*) echo "skip" ;;
-        scaling_300x30:central) echo "--set time.t_end=20" ;;
-        scaling_300x30:wilson | scaling_300x30:wilson-ad) echo "--set time.t_end=5" ;;
+        scaling_300x30:central) echo "--set time.t_end=20" ;;           # [3 s]
+        scaling_300x30:tsit5) echo "--set time.t_end=5" ;;              # [4 s]
+        scaling_300x30:wilson) echo "--set time.t_end=2" ;;             # [4 s]
+        scaling_300x30:sdirk4) echo "--set time.t_end=0.5" ;;           # [6 s]
         scaling_300x30:*) echo "skip" ;;
-        scaling_100x10:*) echo "--set time.t_end=100" ;;
+        scaling_100x10:central) echo "" ;;
+        scaling_100x10:wilson-ad) echo "--set time.t_end=10" ;;
+        scaling_100x10:*) echo "--set time.t_end=425" ;;
+        paper_triangular:wilson-ad | triangular_inverted:wilson-ad) echo "--set time.t_end=440" ;;
+        uniform_low:wilson-ad) echo "--set time.t_end=360" ;;
+        uniform_high:wilson-ad) echo "--set time.t_end=950" ;;
         *) echo "" ;;
     esac
 }
 
-# Runs case $2 with integrator $3 by binary side $1 (a or b); leaves rc, stderr and seconds in
-# its output folder.
+# Runs case $2 with integrator $3 by binary side $1 (a or b) in its own folder, where `cases`
+# links to that side's case files and the catalogs go to `out/`: the paths the binary sees, and
+# so its messages, are the same on both sides. Leaves command, rc, stderr and seconds there.
 run_one() {
     local side=$1 case=$2 integrator=$3 dir start rc
     dir="$out/$side/$case.$integrator"
     mkdir -p "$dir"
+    ln -s "$scratch/cases-$side" "$dir/cases"
     # shellcheck disable=SC2046 # the --set arguments are words by design
-    set -- run "$scratch/cases-$side/$case.toml" --quiet --no-rrd --out-dir "$dir" \
+    set -- run "cases/$case.toml" --quiet --no-rrd --out-dir out \
         $(integrator_sets "$integrator") $(case_plan "$case" "$integrator")
+    echo "slipfront $*" >"$dir/command"
     start=$EPOCHREALTIME
     rc=0
-    timeout "$run_timeout" "$scratch/slipfront-$side" "$@" >"$dir/stdout" 2>"$dir/stderr" </dev/null || rc=$?
+    (cd "$dir" && exec timeout -k 10 "$run_timeout" "$scratch/slipfront-$side" "$@" >stdout 2>stderr </dev/null) || rc=$?
     echo "$rc" >"$dir/rc"
     seconds_since "$start" >"$dir/seconds"
-    echo "slipfront $*" >"$dir/command"
 }
 
 cases=()
 for f in "$scratch"/cases-b/*.toml; do
     cases+=("$(basename "$f" .toml)")
 done
+# The slowest runs start first, so that the last ones to finish are short.
+run_order=()
+for case in scaling_100x10 scaling_1000x100 scaling_300x30 "${cases[@]}"; do
+    if [[ -f "$scratch/cases-b/$case.toml" && " ${run_order[*]} " != *" $case "* ]]; then
+        run_order+=("$case")
+    fi
+done
 
 # Runs the whole matrix for side $1, $jobs at a time; sets matrix_seconds to its wall time.
 run_matrix() {
     local side=$1 case integrator start
     start=$EPOCHREALTIME
-    for case in "${cases[@]}"; do
+    for case in "${run_order[@]}"; do
         for integrator in "${integrators[@]}"; do
             [[ "$(case_plan "$case" "$integrator")" != skip ]] || continue
-            if [[ ! -f "$scratch/cases-$side/$case.toml" ]]; then
-                mkdir -p "$out/$side/$case.$integrator"
-                echo "missing case file" >"$out/$side/$case.$integrator/stderr"
-                echo 127 >"$out/$side/$case.$integrator/rc"
-                continue
-            fi
             while (($(jobs -rp | wc -l) >= jobs)); do
                 wait -n || true
             done
@@ -274,8 +303,8 @@ for case in "${cases[@]}"; do
         da="$out/a/$case.$integrator" db="$out/b/$case.$integrator"
         rc_a=$(cat "$da/rc") rc_b=$(cat "$db/rc")
         err_a=$(last_line "$da/stderr") err_b=$(last_line "$db/stderr")
-        ev=$(compare_file "$da" "$db" "$case.events.csv")
-        ru=$(compare_file "$da" "$db" "$case.ruptures.csv")
+        ev=$(compare_file "$da/out" "$db/out" "$case.events.csv")
+        ru=$(compare_file "$da/out" "$db/out" "$case.ruptures.csv")
         note=""
         cmp -s "$scratch/cases-a/$case.toml" "$scratch/cases-b/$case.toml" 2>/dev/null || note="case file differs; "
         if [[ $rc_a == 2 && $rc_b == 2 && "$err_a" == "$err_b" ]]; then
