@@ -154,24 +154,9 @@ pub fn update_from(
     let z0 = state.structure;
     let traction_n = state.traction_n;
 
-    if traction_n <= 0.0 {
-        // No normal traction: no strength, no traction; all relative sliding is plastic.
-        let increment = slip_increment.abs();
-        let structure = solve_structure(params, z0, increment, dt)?;
-        return Ok(Update {
-            state: ContactState {
-                traction_t: 0.0,
-                structure: structure.value,
-                plastic_slip: state.plastic_slip + increment,
-                ..*state
-            },
-            plastic_increment: increment,
-            tangent: 0.0,
-            structure_tangent: structure.d_plastic * slip_increment.signum(),
-            restart: None,
-        });
+    if state.traction_n <= 0.0 {
+        return without_strength(params, state, slip_increment, dt);
     }
-
     let mu_f = params.mu_k * traction_n;
     let trial = state.traction_t - alpha * slip_increment;
     let healed = solve_structure(params, z0, 0.0, dt)?;
@@ -195,89 +180,149 @@ pub fn update_from(
     if trial_abs / (mu_f * healed.value) <= ratio_start {
         return Ok(elastic); // unloading: the predictor lies inside the subloading surface
     }
+    let loading = Loading { params, z0, dt, mu_f, trial_abs, ratio_start, healed: healed.value };
+    let (last, root, psi_start) = loading.return_to_surface(restart)?;
+    Ok(loading.update(state, sigma, &last, root, psi_start))
+}
 
-    // Loading: find the end of the step on the subloading surface, ψ = |f_trial| - α_t Δp -
-    // R μ_k f_n z(Δp) = 0 with Ψ(R) = Ψ(R₀) + r Δp. Ψ(R) at the start is the restart's only if
-    // it started from the same R.
-    let psi_start = restart.filter(|r| r.ratio_start == ratio_start).map_or_else(|| psi(ratio_start), |r| r.psi_start);
-    let max_increment = trial_abs / alpha;
-    // A trial so far that the decay of 1/R* overshoots 1 lies beyond the root; only an
-    // overshoot at the solution itself is an error.
-    let too_far =
-        |e: &FrictionError| matches!(e, FrictionError::StructureOutOfRange { structure, .. } if *structure < 1.0);
-    let ends_on_surface = |increment: f64, ratio: f64, log_ratio: f64| -> Result<OnSurface, FrictionError> {
-        let structure = solve_structure(params, z0, increment, dt)?;
-        // ∂ψ/∂Δp = -(α_t + hardening), with dR/dΔp = r (-ln R) from Ψ'(R) = 1/(-ln R). The
-        // hardening is kept apart from α_t: next to a very stiff contact it would be lost.
-        let hardening = mu_f * (params.r * log_ratio * structure.value + ratio * structure.d_plastic);
-        let value = trial_abs - alpha * increment - ratio * mu_f * structure.value;
-        Ok(OnSurface { increment, value, hardening, ratio, structure })
-    };
-
-    // What a converged ψ may not exceed.
-    let tolerance = 1e-9 * trial_abs.max(mu_f);
-    // A restart starts the solve only where ψ is monotone and so has one root: else the root
-    // found could depend on where the solve started, and it starts from the same point always.
-    let restart_near = restart.filter(|_| single_root(params, mu_f));
-    let (end, root) = if psi_start.is_infinite() {
-        // R₀ = 1 stays 1 (Ṙ = 0): the unknown is q = -Δp, in which ψ increases.
-        let start = restart_near.map_or(0.0, |r| -r.plastic_increment.clamp(0.0, max_increment));
-        let at = |q: f64| {
-            let end = ends_on_surface(-q, 1.0, 0.0)?;
-            Ok(Trial { slope: alpha + end.hardening, noise: 8.0 * f64::EPSILON * trial_abs, end })
-        };
-        (solve_consistency(at, -max_increment, 0.0, start, &too_far, tolerance)?, None)
-    } else {
-        // The unknown is v = ln(-ln R), in which Ψ(R) = E1(e^v) is explicit: each trial costs
-        // one evaluation of E1 where Δp as the unknown needs an inversion of Ψ. Δp(v) =
-        // (Ψ(R(v)) - Ψ(R₀))/r falls as v rises (dΔp/dv = -R/r), and ψ rises with it.
-        let v_start = if ratio_start > 0.0 { (-ratio_start.ln()).ln() } else { LN_U_MAX };
-        // E1(u) ≥ -γ - ln u, so below this Δp(v) exceeds |f_trial|/α_t, where ψ < 0. Far below
-        // -745, u = e^v is 0, R is 1 and E1 is -γ - v.
-        let v_floor = -(psi_start + params.r * max_increment) - 1.0;
-        let at = |v: f64| {
-            let (u, ratio, psi_end) = psi_at_ln_u(v);
-            let increment = (psi_end - psi_start) / params.r;
-            let end = ends_on_surface(increment.max(0.0), ratio, u)?;
-            let noise = 8.0 * f64::EPSILON * (trial_abs + alpha * (psi_end + psi_start) / params.r);
-            Ok(Trial { slope: (alpha + end.hardening) * ratio / params.r, noise, end })
-        };
-        // Start from the restart's end, moved along dΨ/dv = -R to the restart's Δp; without
-        // one, from the R whose surface passes through the trial traction (no plastic slip).
-        let guess = restart_near
-            .and_then(|r| {
-                r.root.map(|root| root.ln_u - (psi_start + params.r * r.plastic_increment - root.psi) / root.ratio)
-            })
-            .filter(|v| *v > v_floor && *v < v_start)
-            .unwrap_or_else(|| {
-                let ratio = (trial_abs / (mu_f * healed.value)).min(1.0 - 1e-3);
-                (-ratio.ln()).ln().clamp(v_floor, v_start)
-            });
-        let end = solve_consistency(at, v_floor, v_start, guess, &too_far, tolerance)?;
-        let root = Root { ln_u: end.0, ratio: end.1.end.ratio, psi: psi_start + params.r * end.1.end.increment };
-        (end, Some(root))
-    };
-    let last = end.1.end;
-    let (increment, structure) = polish_increment(params, z0, dt, last.ratio * mu_f, &last);
-    let stiffness = alpha + last.hardening; // |∂ψ/∂Δp|
-    // The traction on the subloading surface, |f| = R μ_k f_n / R*: exact on the surface side,
-    // where |f_trial| - α_t Δp would carry the cancellation of a large trial traction.
-    let traction = sigma * last.ratio * mu_f * structure.value;
-    // ∂Δp/∂|f_trial| = 1/|∂ψ/∂Δp|, ∂|f_trial|/∂Δū = -α_t σ.
-    let d_increment = -alpha * sigma / stiffness;
+/// No normal traction: no strength, no traction; all relative sliding is plastic.
+fn without_strength(
+    params: &FrictionParams,
+    state: &ContactState,
+    slip_increment: f64,
+    dt: f64,
+) -> Result<Update, FrictionError> {
+    let z0 = state.structure;
+    let increment = slip_increment.abs();
+    let structure = solve_structure(params, z0, increment, dt)?;
     Ok(Update {
         state: ContactState {
-            traction_t: traction,
-            traction_n,
+            traction_t: 0.0,
             structure: structure.value,
             plastic_slip: state.plastic_slip + increment,
+            ..*state
         },
         plastic_increment: increment,
-        // -α_t (1 - α_t/(α_t + h)) = -α_t h/(α_t + h), without the cancellation.
-        tangent: -alpha * last.hardening / stiffness,
-        structure_tangent: structure.d_plastic * d_increment,
-        restart: Some(Restart { ratio_start, psi_start, plastic_increment: increment, root }),
+        tangent: 0.0,
+        structure_tangent: structure.d_plastic * slip_increment.signum(),
+        restart: None,
     })
+}
+
+/// A loading step: the trial traction lies outside the subloading surface, and the step ends
+/// on it (eq. 3) with plastic slip.
+struct Loading<'a> {
+    params: &'a FrictionParams,
+    /// `1/R*` at the start.
+    z0: f64,
+    dt: f64,
+    /// `μ_k f_n`.
+    mu_f: f64,
+    /// `|f_trial|`.
+    trial_abs: f64,
+    /// `R` at the start.
+    ratio_start: f64,
+    /// `1/R*` healed over the step without slip.
+    healed: f64,
+}
+
+impl Loading<'_> {
+    /// The end of the step on the subloading surface, the root's position for a restart, and
+    /// `Ψ(R₀)`.
+    fn return_to_surface(&self, restart: Option<Restart>) -> Result<(OnSurface, Option<Root>, f64), FrictionError> {
+        let Loading { params, z0, dt, mu_f, trial_abs, ratio_start, healed } = *self;
+        let alpha = params.alpha_t;
+        // Loading: find the end of the step on the subloading surface, ψ = |f_trial| - α_t Δp -
+        // R μ_k f_n z(Δp) = 0 with Ψ(R) = Ψ(R₀) + r Δp. Ψ(R) at the start is the restart's only if
+        // it started from the same R.
+        let psi_start =
+            restart.filter(|r| r.ratio_start == self.ratio_start).map_or_else(|| psi(ratio_start), |r| r.psi_start);
+        let max_increment = trial_abs / alpha;
+        // A trial so far that the decay of 1/R* overshoots 1 lies beyond the root; only an
+        // overshoot at the solution itself is an error.
+        let too_far =
+            |e: &FrictionError| matches!(e, FrictionError::StructureOutOfRange { structure, .. } if *structure < 1.0);
+        let ends_on_surface = |increment: f64, ratio: f64, log_ratio: f64| -> Result<OnSurface, FrictionError> {
+            let structure = solve_structure(params, z0, increment, dt)?;
+            // ∂ψ/∂Δp = -(α_t + hardening), with dR/dΔp = r (-ln R) from Ψ'(R) = 1/(-ln R). The
+            // hardening is kept apart from α_t: next to a very stiff contact it would be lost.
+            let hardening = mu_f * (params.r * log_ratio * structure.value + ratio * structure.d_plastic);
+            let value = trial_abs - alpha * increment - ratio * mu_f * structure.value;
+            Ok(OnSurface { increment, value, hardening, ratio, structure })
+        };
+
+        // What a converged ψ may not exceed.
+        let tolerance = 1e-9 * trial_abs.max(mu_f);
+        // A restart starts the solve only where ψ is monotone and so has one root: else the root
+        // found could depend on where the solve started, and it starts from the same point always.
+        let restart_near = restart.filter(|_| single_root(params, mu_f));
+        let (end, root) = if psi_start.is_infinite() {
+            // R₀ = 1 stays 1 (Ṙ = 0): the unknown is q = -Δp, in which ψ increases.
+            let start = restart_near.map_or(0.0, |r| -r.plastic_increment.clamp(0.0, max_increment));
+            let at = |q: f64| {
+                let end = ends_on_surface(-q, 1.0, 0.0)?;
+                Ok(Trial { slope: alpha + end.hardening, noise: 8.0 * f64::EPSILON * trial_abs, end })
+            };
+            (solve_consistency(at, -max_increment, 0.0, start, &too_far, tolerance)?, None)
+        } else {
+            // The unknown is v = ln(-ln R), in which Ψ(R) = E1(e^v) is explicit: each trial costs
+            // one evaluation of E1 where Δp as the unknown needs an inversion of Ψ. Δp(v) =
+            // (Ψ(R(v)) - Ψ(R₀))/r falls as v rises (dΔp/dv = -R/r), and ψ rises with it.
+            let v_start = if ratio_start > 0.0 { (-ratio_start.ln()).ln() } else { LN_U_MAX };
+            // E1(u) ≥ -γ - ln u, so below this Δp(v) exceeds |f_trial|/α_t, where ψ < 0. Far below
+            // -745, u = e^v is 0, R is 1 and E1 is -γ - v.
+            let v_floor = -(psi_start + params.r * max_increment) - 1.0;
+            let at = |v: f64| {
+                let (u, ratio, psi_end) = psi_at_ln_u(v);
+                let increment = (psi_end - psi_start) / params.r;
+                let end = ends_on_surface(increment.max(0.0), ratio, u)?;
+                let noise = 8.0 * f64::EPSILON * (trial_abs + alpha * (psi_end + psi_start) / params.r);
+                Ok(Trial { slope: (alpha + end.hardening) * ratio / params.r, noise, end })
+            };
+            // Start from the restart's end, moved along dΨ/dv = -R to the restart's Δp; without
+            // one, from the R whose surface passes through the trial traction (no plastic slip).
+            let guess = restart_near
+                .and_then(|r| {
+                    r.root.map(|root| root.ln_u - (psi_start + params.r * r.plastic_increment - root.psi) / root.ratio)
+                })
+                .filter(|v| *v > v_floor && *v < v_start)
+                .unwrap_or_else(|| {
+                    let ratio = (trial_abs / (mu_f * healed)).min(1.0 - 1e-3);
+                    (-ratio.ln()).ln().clamp(v_floor, v_start)
+                });
+            let end = solve_consistency(at, v_floor, v_start, guess, &too_far, tolerance)?;
+            let root = Root { ln_u: end.0, ratio: end.1.end.ratio, psi: psi_start + params.r * end.1.end.increment };
+            (end, Some(root))
+        };
+        Ok((end.1.end, root, psi_start))
+    }
+
+    /// The update that ends on the surface at `last`, with traction of sign `sigma`.
+    fn update(&self, state: &ContactState, sigma: f64, last: &OnSurface, root: Option<Root>, psi_start: f64) -> Update {
+        let Loading { params, z0, dt, mu_f, ratio_start, .. } = *self;
+        let alpha = params.alpha_t;
+        let traction_n = state.traction_n;
+        let (increment, structure) = polish_increment(params, z0, dt, last.ratio * mu_f, last);
+        let stiffness = alpha + last.hardening; // |∂ψ/∂Δp|
+        // The traction on the subloading surface, |f| = R μ_k f_n / R*: exact on the surface side,
+        // where |f_trial| - α_t Δp would carry the cancellation of a large trial traction.
+        let traction = sigma * last.ratio * mu_f * structure.value;
+        // ∂Δp/∂|f_trial| = 1/|∂ψ/∂Δp|, ∂|f_trial|/∂Δū = -α_t σ.
+        let d_increment = -alpha * sigma / stiffness;
+        Update {
+            state: ContactState {
+                traction_t: traction,
+                traction_n,
+                structure: structure.value,
+                plastic_slip: state.plastic_slip + increment,
+            },
+            plastic_increment: increment,
+            // -α_t (1 - α_t/(α_t + h)) = -α_t h/(α_t + h), without the cancellation.
+            tangent: -alpha * last.hardening / stiffness,
+            structure_tangent: structure.d_plastic * d_increment,
+            restart: Some(Restart { ratio_start, psi_start, plastic_increment: increment, root }),
+        }
+    }
 }
 
 /// `Δp` and `1/R*` at the end, polished by the consistency condition at the solution's `R`:

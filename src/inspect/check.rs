@@ -13,7 +13,7 @@ use std::path::Path;
 use serde::Deserialize;
 
 use crate::frame::SceneKind;
-use crate::inspect::Recording;
+use crate::inspect::{Recording, Series};
 use crate::record::schema::{self, RunEnding, RunInfo};
 
 /// Optional expectations (`--expect EXPECT.toml`).
@@ -96,22 +96,40 @@ impl Report {
 /// Checks `recording` against its own description and `expect`.
 pub fn check(recording: &Recording, expect: &Expectations) -> Report {
     let mut report = Report::default();
-    let problems = &mut report.problems;
     if let Some(problem) = &recording.problem {
-        problems.push(format!("the file is damaged: {problem}"));
+        report.problems.push(format!("the file is damaged: {problem}"));
     }
+    let Some((info, ending)) = describe(recording, &mut report) else { return report };
+    let reference = check_series(recording, &info, &mut report);
+    match reference {
+        Some((path, series)) => check_time_axis(path, series, &info, ending.as_ref(), &mut report),
+        None if !info.series.is_empty() => report.problems.push("none of the listed series is present".into()),
+        None => {}
+    }
+    check_spatial(recording, &info, &mut report);
+    if let Some(e) = &ending {
+        check_events(recording, &info, e, expect, &mut report);
+    }
+    check_blueprint(recording, &mut report);
+    check_expectations(recording, expect, &mut report);
+    report
+}
+
+/// The run description and ending record, summarized; `None` (with the problem) where the
+/// description is missing or unreadable.
+fn describe(recording: &Recording, report: &mut Report) -> Option<(RunInfo, Option<RunEnding>)> {
     let Some(info_text) = recording.static_texts.get(schema::RUN_INFO) else {
-        problems.push(format!(
+        report.problems.push(format!(
             "no run description at {}: not a slipfront recording, or cut off at its start",
             schema::RUN_INFO
         ));
-        return report;
+        return None;
     };
     let info: RunInfo = match toml::from_str(info_text) {
         Ok(info) => info,
         Err(e) => {
-            problems.push(format!("the run description at {} is unreadable: {e}", schema::RUN_INFO));
-            return report;
+            report.problems.push(format!("the run description at {} is unreadable: {e}", schema::RUN_INFO));
+            return None;
         }
     };
     let ending: Option<RunEnding> = recording.static_texts.get(schema::RUN_ENDING).and_then(|t| toml::from_str(t).ok());
@@ -124,7 +142,7 @@ pub fn check(recording: &Recording, expect: &Expectations) -> Report {
         info.stepping()
     ));
     match &ending {
-        None => problems.push(format!(
+        None => report.problems.push(format!(
             "no ending record at {}: the recording stops before the run finished writing it (truncated?)",
             schema::RUN_ENDING
         )),
@@ -133,9 +151,14 @@ pub fn check(recording: &Recording, expect: &Expectations) -> Report {
             e.ending, e.rows, e.last_time, e.slip_events, e.ruptures
         )),
     }
+    Some((info, ending))
+}
 
-    // Every listed series, with the same rows, sim_time rising with step, finite values.
-    let mut reference: Option<(&str, &crate::inspect::Series)> = None;
+/// Every listed series present, with the same rows and finite values; returns the first
+/// present one, the reference for the time axis.
+fn check_series<'r>(recording: &'r Recording, info: &'r RunInfo, report: &mut Report) -> Option<(&'r str, &'r Series)> {
+    let problems = &mut report.problems;
+    let mut reference: Option<(&str, &Series)> = None;
     let mut non_finite = 0usize;
     for path in &info.series {
         let Some(series) = recording.series.get(path) else {
@@ -166,80 +189,98 @@ pub fn check(recording: &Recording, expect: &Expectations) -> Report {
     if non_finite > 5 {
         problems.push(format!("{} more series hold NaN or infinite values", non_finite - 5));
     }
-    if let Some((path, series)) = reference {
-        let rows = series.steps.len();
-        report.summary.push(format!("{} series x {rows} rows", info.series.len()));
-        if let Some(i) = series.times.windows(2).position(|w| w[1] < w[0]) {
-            problems.push(format!(
-                "sim_time decreases in {path} at step {}: {} s then {} s",
-                series.steps[i + 1],
-                series.times[i],
-                series.times[i + 1]
-            ));
-        }
-        if series.steps.windows(2).any(|w| w[1] == w[0]) {
-            problems.push(format!("{path} has two rows at the same step"));
-        }
-        let first = series.times.first().copied().unwrap_or(f64::NAN);
-        let last = series.times.last().copied().unwrap_or(f64::NAN);
-        if first != 0.0 {
-            problems.push(format!("sim_time starts at {first} s, not at 0"));
-        }
-        let expected_end = match &ending {
-            Some(e) if e.ending != "completed" => e.last_time,
-            _ => info.t_end,
-        };
-        if (last - expected_end).abs() > 1e-6 * expected_end.max(1.0) {
-            problems.push(format!("sim_time ends at {last} s, the run at {expected_end} s"));
-        }
-        if let Some(e) = &ending
-            && e.rows as usize != rows
-        {
-            problems.push(format!("{rows} rows recorded, the run reports {}", e.rows));
-        }
-        report.summary.push(format!("sim_time from {first} s to {last} s"));
-    } else if !info.series.is_empty() {
-        problems.push("none of the listed series is present".into());
+    reference
+}
+
+/// `sim_time` rising with the step from 0 to the run's end, one row per step, as many rows as
+/// the run reports.
+fn check_time_axis(path: &str, series: &Series, info: &RunInfo, ending: Option<&RunEnding>, report: &mut Report) {
+    let problems = &mut report.problems;
+    let rows = series.steps.len();
+    report.summary.push(format!("{} series x {rows} rows", info.series.len()));
+    if let Some(i) = series.times.windows(2).position(|w| w[1] < w[0]) {
+        problems.push(format!(
+            "sim_time decreases in {path} at step {}: {} s then {} s",
+            series.steps[i + 1],
+            series.times[i],
+            series.times[i + 1]
+        ));
     }
+    if series.steps.windows(2).any(|w| w[1] == w[0]) {
+        problems.push(format!("{path} has two rows at the same step"));
+    }
+    let first = series.times.first().copied().unwrap_or(f64::NAN);
+    let last = series.times.last().copied().unwrap_or(f64::NAN);
+    if first != 0.0 {
+        problems.push(format!("sim_time starts at {first} s, not at 0"));
+    }
+    let expected_end = match ending {
+        Some(e) if e.ending != "completed" => e.last_time,
+        _ => info.t_end,
+    };
+    if (last - expected_end).abs() > 1e-6 * expected_end.max(1.0) {
+        problems.push(format!("sim_time ends at {last} s, the run at {expected_end} s"));
+    }
+    if let Some(e) = ending
+        && e.rows as usize != rows
+    {
+        problems.push(format!("{rows} rows recorded, the run reports {}", e.rows));
+    }
+    report.summary.push(format!("sim_time from {first} s to {last} s"));
+}
+
+/// The spatial views' entities, where the run recorded them.
+fn check_spatial(recording: &Recording, info: &RunInfo, report: &mut Report) {
     if info.spatial {
         for entity in [schema::SPATIAL_CONTACT, schema::SPATIAL_MESH, schema::SPACETIME_IMAGE, schema::SPACETIME_NOW] {
             if !recording.entities.contains(entity) {
-                problems.push(format!("missing entity {entity} of the spatial views"));
+                report.problems.push(format!("missing entity {entity} of the spatial views"));
             }
         }
     }
-    if let Some(e) = &ending {
-        let logged = recording.text_logs.iter().filter(|(entity, _, _)| entity == schema::EVENTS).count();
-        let expected = e.slip_events + if info.kind == SceneKind::Block { e.ruptures } else { 0 };
-        if logged != expected {
-            problems.push(format!("{logged} entries in the event log, the catalog holds {expected}"));
-        }
-        if let Some([lo, hi]) = expect.events.slip_events
-            && !(lo..=hi).contains(&e.slip_events)
-        {
-            problems.push(format!("{} slip events, expected {lo} to {hi}", e.slip_events));
-        }
-        if let Some([lo, hi]) = expect.events.ruptures
-            && !(lo..=hi).contains(&e.ruptures)
-        {
-            problems.push(format!("{} ruptures, expected {lo} to {hi}", e.ruptures));
-        }
-    }
+}
+
+/// The stored blueprint's views.
+fn check_blueprint(recording: &Recording, report: &mut Report) {
     if recording.views.is_empty() {
-        problems.push("no blueprint views stored".into());
+        report.problems.push("no blueprint views stored".into());
     } else {
         report.summary.push(format!(
             "blueprint: {}",
             recording.views.iter().map(|v| format!("{} \"{}\"", v.class, v.name)).collect::<Vec<_>>().join(", ")
         ));
     }
+}
+
+/// The event log against the catalog's counts, and the expected counts.
+fn check_events(recording: &Recording, info: &RunInfo, e: &RunEnding, expect: &Expectations, report: &mut Report) {
+    let problems = &mut report.problems;
+    let logged = recording.text_logs.iter().filter(|(entity, _, _)| entity == schema::EVENTS).count();
+    let expected = e.slip_events + if info.kind == SceneKind::Block { e.ruptures } else { 0 };
+    if logged != expected {
+        problems.push(format!("{logged} entries in the event log, the catalog holds {expected}"));
+    }
+    if let Some([lo, hi]) = expect.events.slip_events
+        && !(lo..=hi).contains(&e.slip_events)
+    {
+        problems.push(format!("{} slip events, expected {lo} to {hi}", e.slip_events));
+    }
+    if let Some([lo, hi]) = expect.events.ruptures
+        && !(lo..=hi).contains(&e.ruptures)
+    {
+        problems.push(format!("{} ruptures, expected {lo} to {hi}", e.ruptures));
+    }
+}
+
+/// Each `[[at]]` expectation: the series' last row at or before its time, within its range.
+fn check_expectations(recording: &Recording, expect: &Expectations, report: &mut Report) {
     for (i, at) in expect.at.iter().enumerate() {
         let Some(series) = recording.series.get(at.entity.trim_start_matches('/')) else {
-            problems.push(format!("at[{i}]: no series {}", at.entity));
+            report.problems.push(format!("at[{i}]: no series {}", at.entity));
             continue;
         };
         match series.at(at.time) {
-            None => problems.push(format!("at[{i}]: {} has no row at or before t = {} s", at.entity, at.time)),
+            None => report.problems.push(format!("at[{i}]: {} has no row at or before t = {} s", at.entity, at.time)),
             Some((t, v)) => {
                 let low = at.min.is_some_and(|m| v < m);
                 let high = at.max.is_some_and(|m| v > m);
@@ -249,12 +290,11 @@ pub fn check(recording: &Recording, expect: &Expectations) -> Report {
                     at.max.map_or("inf".into(), |m| m.to_string())
                 );
                 if low || high || !v.is_finite() {
-                    problems.push(format!("at[{i}]: {} = {v} at t = {t} s, expected in {range}", at.entity));
+                    report.problems.push(format!("at[{i}]: {} = {v} at t = {t} s, expected in {range}", at.entity));
                 } else {
                     report.summary.push(format!("{} = {v} at t = {t} s, in {range}", at.entity));
                 }
             }
         }
     }
-    report
 }

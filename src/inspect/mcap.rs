@@ -13,7 +13,7 @@ use crate::catalog::events::Catalog;
 use crate::frame::{Frame, SegmentSample};
 use crate::inspect::ReadError;
 use crate::inspect::framing;
-use crate::record::mcap::LogHeader;
+use crate::record::mcap::{self as format, LogHeader};
 use crate::record::proto;
 use crate::record::schema::RunEnding;
 
@@ -66,10 +66,7 @@ pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
 
 fn decode(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
     let stream = mcap::MessageStream::new(bytes).map_err(|e| ReadError(format!("{name} is not an MCAP file: {e}")))?;
-    let mut header: Option<LogHeader> = None;
-    let mut parts: BTreeMap<u32, Parts> = BTreeMap::new();
-    let mut catalog = Catalog::default();
-    let mut ending = None;
+    let mut read = Reading::default();
     let mut messages = 0usize;
     let mut problem = None;
     let mut skipped: BTreeMap<String, usize> = BTreeMap::new();
@@ -85,66 +82,18 @@ fn decode(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
         };
         let schema = message.channel.schema.as_ref().map(|s| s.name.as_str()).unwrap_or("");
         let topic = message.channel.topic.as_str();
-        let known = crate::record::mcap::TOPICS.iter().any(|(t, m)| *t == topic && schema == proto::full_name(m));
+        let known = format::TOPICS.iter().any(|(t, m)| *t == topic && schema == proto::full_name(m));
         if !known || message.channel.message_encoding != "protobuf" {
             *skipped.entry(topic.to_string()).or_default() += 1;
             continue;
         }
-        let data: &[u8] = &message.data;
-        let bad = |e: prost::DecodeError| format!("message {} on {topic} does not decode: {e}", messages + 1);
-        let decoded: Result<(), String> = (|| {
-            match topic {
-                crate::record::mcap::TOPIC_RUN => {
-                    let run = proto::Run::decode(data).map_err(bad)?;
-                    let parsed: LogHeader =
-                        toml::from_str(&run.header).map_err(|e| format!("the run header is unreadable: {e}"))?;
-                    if parsed.format != crate::record::mcap::FORMAT {
-                        return Err(format!("log format {} is not {}", parsed.format, crate::record::mcap::FORMAT));
-                    }
-                    header = Some(parsed);
-                }
-                crate::record::mcap::TOPIC_SEGMENTS => {
-                    let m = proto::SegmentStates::decode(data).map_err(bad)?;
-                    let step = m.step;
-                    parts.entry(step).or_default().segments = Some(m);
-                }
-                crate::record::mcap::TOPIC_NODES => {
-                    let m = proto::NodeDisplacements::decode(data).map_err(bad)?;
-                    let step = m.step;
-                    parts.entry(step).or_default().nodes = Some(m);
-                }
-                crate::record::mcap::TOPIC_MESH => {
-                    let m = proto::MeshDisplacements::decode(data).map_err(bad)?;
-                    let step = m.step;
-                    parts.entry(step).or_default().mesh = Some(m);
-                }
-                crate::record::mcap::TOPIC_TOTALS => {
-                    let m = proto::Totals::decode(data).map_err(bad)?;
-                    let step = m.step;
-                    parts.entry(step).or_default().totals = Some(m);
-                }
-                crate::record::mcap::TOPIC_EVENTS => {
-                    catalog.events.push(proto::SlipEvent::decode(data).map_err(bad)?.into());
-                }
-                crate::record::mcap::TOPIC_RUPTURES => {
-                    catalog.ruptures.push(proto::Rupture::decode(data).map_err(bad)?.into());
-                }
-                crate::record::mcap::TOPIC_ENDING => {
-                    let m = proto::Ending::decode(data).map_err(bad)?;
-                    ending =
-                        Some(toml::from_str(&m.ending).map_err(|e| format!("the ending record is unreadable: {e}"))?);
-                }
-                _ => unreachable!("known topics only"),
-            }
-            Ok(())
-        })();
-        if let Err(e) = decoded {
+        if let Err(e) = read.take(topic, &message.data, messages + 1) {
             problem = Some(format!("{e}; the messages before it were kept"));
             break;
         }
         messages += 1;
     }
-    let Some(header) = header else {
+    let Some(header) = read.header else {
         let others = if skipped.is_empty() {
             String::new()
         } else {
@@ -152,10 +101,10 @@ fn decode(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
         };
         return Err(ReadError(format!(
             "{name} holds no slipfront run header on {}{others}: not a slipfront log, or damaged before it",
-            crate::record::mcap::TOPIC_RUN
+            format::TOPIC_RUN
         )));
     };
-    let (frames, incomplete) = assemble(&header, parts);
+    let (frames, incomplete) = assemble(&header, read.parts);
     if incomplete > 0 {
         let note = format!("{incomplete} recorded steps were incomplete and dropped");
         problem = Some(match problem {
@@ -163,9 +112,66 @@ fn decode(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
             None => note,
         });
     }
+    let mut catalog = read.catalog;
     catalog.events.sort_by(|a, b| a.onset.total_cmp(&b.onset).then(a.segment.cmp(&b.segment)));
     catalog.ruptures.sort_by(|a, b| a.onset.total_cmp(&b.onset));
-    Ok(Log { header, frames, catalog, ending, messages, problem, skipped })
+    Ok(Log { header, frames, catalog, ending: read.ending, messages, problem, skipped })
+}
+
+/// What the messages read so far hold.
+#[derive(Default)]
+struct Reading {
+    header: Option<LogHeader>,
+    parts: BTreeMap<u32, Parts>,
+    catalog: Catalog,
+    ending: Option<RunEnding>,
+}
+
+impl Reading {
+    /// Decodes message number `number`, on a known `topic`, into what it holds.
+    fn take(&mut self, topic: &str, data: &[u8], number: usize) -> Result<(), String> {
+        let bad = |e: prost::DecodeError| format!("message {number} on {topic} does not decode: {e}");
+        match topic {
+            format::TOPIC_RUN => {
+                let run = proto::Run::decode(data).map_err(bad)?;
+                let parsed: LogHeader =
+                    toml::from_str(&run.header).map_err(|e| format!("the run header is unreadable: {e}"))?;
+                if parsed.format != format::FORMAT {
+                    return Err(format!("log format {} is not {}", parsed.format, format::FORMAT));
+                }
+                self.header = Some(parsed);
+            }
+            format::TOPIC_SEGMENTS => {
+                let m = proto::SegmentStates::decode(data).map_err(bad)?;
+                let step = m.step;
+                self.parts.entry(step).or_default().segments = Some(m);
+            }
+            format::TOPIC_NODES => {
+                let m = proto::NodeDisplacements::decode(data).map_err(bad)?;
+                let step = m.step;
+                self.parts.entry(step).or_default().nodes = Some(m);
+            }
+            format::TOPIC_MESH => {
+                let m = proto::MeshDisplacements::decode(data).map_err(bad)?;
+                let step = m.step;
+                self.parts.entry(step).or_default().mesh = Some(m);
+            }
+            format::TOPIC_TOTALS => {
+                let m = proto::Totals::decode(data).map_err(bad)?;
+                let step = m.step;
+                self.parts.entry(step).or_default().totals = Some(m);
+            }
+            format::TOPIC_EVENTS => self.catalog.events.push(proto::SlipEvent::decode(data).map_err(bad)?.into()),
+            format::TOPIC_RUPTURES => self.catalog.ruptures.push(proto::Rupture::decode(data).map_err(bad)?.into()),
+            format::TOPIC_ENDING => {
+                let m = proto::Ending::decode(data).map_err(bad)?;
+                self.ending =
+                    Some(toml::from_str(&m.ending).map_err(|e| format!("the ending record is unreadable: {e}"))?);
+            }
+            _ => unreachable!("known topics only"),
+        }
+        Ok(())
+    }
 }
 
 /// Builds frames from their parts; returns them and how many steps lacked a part.

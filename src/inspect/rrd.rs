@@ -54,20 +54,40 @@ fn decode(reader: impl std::io::BufRead, name: &str, plausible: Plausible) -> Re
     Ok(recording)
 }
 
+/// The components and timelines a recording is read by.
+struct Names {
+    scalars: ComponentIdentifier,
+    text: ComponentIdentifier,
+    log_text: ComponentIdentifier,
+    /// Blueprint components (`rerun.blueprint.archetypes.ViewBlueprint`, `ViewContents`); the
+    /// archetypes themselves are not re-exported by the `rerun` crate.
+    class: ComponentIdentifier,
+    display_name: ComponentIdentifier,
+    origin: ComponentIdentifier,
+    query: ComponentIdentifier,
+    step: TimelineName,
+    time: TimelineName,
+}
+
+impl Names {
+    fn new() -> Self {
+        Self {
+            scalars: rerun::Scalars::descriptor_scalars().component,
+            text: rerun::TextDocument::descriptor_text().component,
+            log_text: rerun::TextLog::descriptor_text().component,
+            class: ComponentIdentifier::from("ViewBlueprint:class_identifier"),
+            display_name: ComponentIdentifier::from("ViewBlueprint:display_name"),
+            origin: ComponentIdentifier::from("ViewBlueprint:space_origin"),
+            query: ComponentIdentifier::from("ViewContents:query"),
+            step: TimelineName::from(schema::STEP),
+            time: TimelineName::from(schema::SIM_TIME),
+        }
+    }
+}
+
 /// Builds a [`Recording`] from log messages (a file's, or an in-memory stream's).
 pub fn from_messages(messages: impl Iterator<Item = Result<LogMsg, String>>) -> Recording {
-    let scalars: ComponentIdentifier = rerun::Scalars::descriptor_scalars().component;
-    let text: ComponentIdentifier = rerun::TextDocument::descriptor_text().component;
-    let log_text: ComponentIdentifier = rerun::TextLog::descriptor_text().component;
-    // Blueprint components (`rerun.blueprint.archetypes.ViewBlueprint`, `ViewContents`); the
-    // archetypes themselves are not re-exported by the `rerun` crate.
-    let class = ComponentIdentifier::from("ViewBlueprint:class_identifier");
-    let display_name = ComponentIdentifier::from("ViewBlueprint:display_name");
-    let origin = ComponentIdentifier::from("ViewBlueprint:space_origin");
-    let query = ComponentIdentifier::from("ViewContents:query");
-    let step_timeline = TimelineName::from(schema::STEP);
-    let time_timeline = TimelineName::from(schema::SIM_TIME);
-
+    let names = Names::new();
     let mut recording = Recording::default();
     let mut views: std::collections::BTreeMap<String, View> = Default::default();
     for message in messages {
@@ -87,58 +107,11 @@ pub fn from_messages(messages: impl Iterator<Item = Result<LogMsg, String>>) -> 
                 break;
             }
         };
-        let entity = chunk.entity_path().to_string();
-        let entity = entity.trim_start_matches('/').to_string();
         if store.is_blueprint() {
             recording.blueprint_messages += 1;
-            let strings = |id: ComponentIdentifier| -> Vec<String> {
-                chunk.iter_slices::<String>(id).flatten().map(|s| s.as_str().to_string()).collect()
-            };
-            if let Some(id) = entity.strip_prefix("view/") {
-                if let Some(id) = id.strip_suffix("/ViewContents") {
-                    let view = views.entry(id.to_string()).or_default();
-                    view.contents.extend(strings(query));
-                } else if !id.contains('/') {
-                    let view = views.entry(id.to_string()).or_default();
-                    if let Some(c) = strings(class).pop() {
-                        view.class = c;
-                    }
-                    if let Some(n) = strings(display_name).pop() {
-                        view.name = n;
-                    }
-                    if let Some(o) = strings(origin).pop() {
-                        view.origin = o;
-                    }
-                }
-            }
-            continue;
-        }
-        recording.entities.insert(entity.clone());
-        if chunk.is_static() {
-            for texts in chunk.iter_slices::<String>(text) {
-                if let Some(t) = texts.last() {
-                    recording.static_texts.insert(entity.clone(), t.as_str().to_string());
-                }
-            }
-            continue;
-        }
-        if chunk.components().get_array(scalars).is_some() {
-            let series = recording.series.entry(entity.clone()).or_default();
-            let steps = chunk.iter_component_indices(step_timeline, scalars);
-            let times = chunk.iter_component_indices(time_timeline, scalars);
-            for (((step, _), (time, _)), values) in steps.zip(times).zip(chunk.iter_slices::<f64>(scalars)) {
-                series.steps.push(step.as_i64());
-                series.times.push(time.as_i64() as f64 / 1e9);
-                series.values.push(values.first().copied().unwrap_or(f64::NAN));
-            }
-        }
-        if chunk.components().get_array(log_text).is_some() {
-            let times = chunk.iter_component_indices(time_timeline, log_text);
-            for ((time, _), texts) in times.zip(chunk.iter_slices::<String>(log_text)) {
-                for t in texts {
-                    recording.text_logs.push((entity.clone(), time.as_i64() as f64 / 1e9, t.as_str().to_string()));
-                }
-            }
+            read_view(&chunk, &names, &mut views);
+        } else {
+            read_data(&chunk, &names, &mut recording);
         }
     }
     recording.views = views.into_values().filter(|v| !v.class.is_empty()).collect();
@@ -146,4 +119,65 @@ pub fn from_messages(messages: impl Iterator<Item = Result<LogMsg, String>>) -> 
         series.sort_by_step();
     }
     recording
+}
+
+/// The entity path without its leading `/`.
+fn entity_of(chunk: &Chunk) -> String {
+    chunk.entity_path().to_string().trim_start_matches('/').to_string()
+}
+
+/// A blueprint chunk: a view's class, name and origin, or its contents.
+fn read_view(chunk: &Chunk, names: &Names, views: &mut std::collections::BTreeMap<String, View>) {
+    let entity = entity_of(chunk);
+    let strings = |id: ComponentIdentifier| -> Vec<String> {
+        chunk.iter_slices::<String>(id).flatten().map(|s| s.as_str().to_string()).collect()
+    };
+    let Some(id) = entity.strip_prefix("view/") else { return };
+    if let Some(id) = id.strip_suffix("/ViewContents") {
+        let view = views.entry(id.to_string()).or_default();
+        view.contents.extend(strings(names.query));
+    } else if !id.contains('/') {
+        let view = views.entry(id.to_string()).or_default();
+        if let Some(c) = strings(names.class).pop() {
+            view.class = c;
+        }
+        if let Some(n) = strings(names.display_name).pop() {
+            view.name = n;
+        }
+        if let Some(o) = strings(names.origin).pop() {
+            view.origin = o;
+        }
+    }
+}
+
+/// A recording chunk: static texts, scalar series by step and time, and text logs.
+fn read_data(chunk: &Chunk, names: &Names, recording: &mut Recording) {
+    let entity = entity_of(chunk);
+    recording.entities.insert(entity.clone());
+    if chunk.is_static() {
+        for texts in chunk.iter_slices::<String>(names.text) {
+            if let Some(t) = texts.last() {
+                recording.static_texts.insert(entity.clone(), t.as_str().to_string());
+            }
+        }
+        return;
+    }
+    if chunk.components().get_array(names.scalars).is_some() {
+        let series = recording.series.entry(entity.clone()).or_default();
+        let steps = chunk.iter_component_indices(names.step, names.scalars);
+        let times = chunk.iter_component_indices(names.time, names.scalars);
+        for (((step, _), (time, _)), values) in steps.zip(times).zip(chunk.iter_slices::<f64>(names.scalars)) {
+            series.steps.push(step.as_i64());
+            series.times.push(time.as_i64() as f64 / 1e9);
+            series.values.push(values.first().copied().unwrap_or(f64::NAN));
+        }
+    }
+    if chunk.components().get_array(names.log_text).is_some() {
+        let times = chunk.iter_component_indices(names.time, names.log_text);
+        for ((time, _), texts) in times.zip(chunk.iter_slices::<String>(names.log_text)) {
+            for t in texts {
+                recording.text_logs.push((entity.clone(), time.as_i64() as f64 / 1e9, t.as_str().to_string()));
+            }
+        }
+    }
 }
