@@ -21,7 +21,9 @@ byte-identical between the slipfront binary of revision REV and that of the curr
 A combination that both binaries refuse as invalid input (exit 2, same message: e.g. the point
 scene takes Wilson only) is printed "n/a". The scaling_* meshes run shortened (--set
 time.t_end=...) and their slowest integrator/mesh pairs are printed "skipped (slow)", so that
-one binary's matrix takes about 3 minutes on 2 cores; paper_triangular runs its full 1000 s.
+one binary's matrix takes 1.5-3 minutes on 2 cores (measured: 80-104 s, and 136-170 s
+while another build shared the machine); paper_triangular runs its full 1000 s with every
+fixed-step or Runge-Kutta integrator, adaptive Wilson up to 440 s (its first 4 events).
 A run that fails must fail the same way in both (exit code and last line of stderr).
 
 REV is built in a temporary git worktree under target/same-catalogs/ (removed at exit) with
@@ -82,10 +84,16 @@ fi
 mkdir -p "$target/same-catalogs"
 scratch=$(mktemp -d "$target/same-catalogs/run.XXXXXX")
 worktrees=()
+purge_at_exit=0
 cleanup() {
     local status=$? wt
     trap - EXIT INT TERM
     jobs -pr | xargs -r kill 2>/dev/null || true
+    # If the last build in target/ was of a worktree, the work tree's next `cargo build` could
+    # judge its crate fresh by those mtimes and keep the worktree's: make it recompile.
+    if ((purge_at_exit)); then
+        forget_slipfront_build
+    fi
     for wt in "${worktrees[@]}"; do
         git -C "$root" worktree remove --force "$wt" >/dev/null 2>&1 || rm -rf "$wt"
     done
@@ -103,20 +111,27 @@ mkdir -p "$out"
 # ---------------------------------------------------------------------------------------------
 # Builds.
 
-# Builds the slipfront binary of the sources in $1 into the shared target/ and copies it to $2.
-# The crate's fingerprints and the uplifted binary are deleted first, so cargo must recompile
-# the crate and write the binary again; its JSON messages must say so.
-build_binary() {
-    local src=$1 dest=$2 log=$3 artifacts exe
-    rm -f "$target/release/slipfront"
-    # The release lib and bin units only (the checkouts share their hashes: cargo would judge
-    # the work tree fresh by the mtimes of REV's build and keep REV's crate).
+# Deletes the uplifted target/release/slipfront and the fingerprints of slipfront's release lib
+# and bin units (not its tests'). Every checkout of the crate gets the same unit hashes, so
+# without this cargo judges the work tree's crate fresh by the mtimes of REV's build and
+# keeps (or re-uplifts) REV's.
+forget_slipfront_build() {
     local fp
+    rm -f "$target/release/slipfront"
     for fp in "$target"/release/.fingerprint/slipfront-*; do
         if [[ -e "$fp/lib-slipfront" || -e "$fp/bin-slipfront" ]]; then
             rm -rf "$fp"
         fi
     done
+}
+
+# Builds the slipfront binary of the sources in $1 into the shared target/ and copies it to $2.
+# The crate's build is forgotten first, so cargo must recompile the crate and write the binary
+# again; its JSON messages must say so.
+build_binary() {
+    local src=$1 dest=$2 log=$3 artifacts exe
+    purge_at_exit=1
+    forget_slipfront_build
     echo "  cargo build --release in $src (log: $log)" >&2
     if ! (cd "$src" && CARGO_TARGET_DIR="$target" cargo build --release --bin slipfront \
         --message-format=json-render-diagnostics >"$log.json" 2>"$log"); then
@@ -131,6 +146,25 @@ build_binary() {
     exe=$(grep -o '"executable":"[^"]*"' <<<"$artifacts" | tail -n 1 | cut -d'"' -f4)
     [[ -n "$exe" && -x "$exe" ]] || die "cargo named no slipfront executable for $src"
     cp "$exe" "$dest"
+    [[ "$src" != "$root" ]] || purge_at_exit=0
+}
+
+# Which of the checkouts $2 and $3 the binary $1 names as the folder it was compiled in (the
+# DWARF compilation directory: the release profile keeps line tables). Every worktree here has a
+# fresh path, so a binary that names its own is the one compiled from it. Dies if it names the
+# other one; says "unchecked" without strings(1) or debug info.
+binary_origin() {
+    local bin=$1 own=$2 other=$3 names
+    command -v strings >/dev/null || { echo "unchecked (no strings(1))"; return; }
+    names=$(strings -n 6 "$bin" | grep -Fx -e "$own" -e "$other" | sort -u || true)
+    if [[ "$own" != "$other" ]] && grep -Fxq -- "$other" <<<"$names"; then
+        die "the binary built from $own was compiled in $other"
+    fi
+    if grep -Fxq -- "$own" <<<"$names"; then
+        echo "compiled in $own"
+    else
+        echo "unchecked (it names no compilation folder)"
+    fi
 }
 
 # Checks out revision $1 in a new worktree $2 (removed at exit).
@@ -161,6 +195,10 @@ build_binary "$src_b" "$scratch/slipfront-b" "$out/build-b.log"
 sum_a=$(sha256sum <"$scratch/slipfront-a" | cut -c1-16)
 sum_b=$(sha256sum <"$scratch/slipfront-b" | cut -c1-16)
 echo "binaries: A sha256 $sum_a, B sha256 $sum_b ($([[ $sum_a == "$sum_b" ]] && echo "bit-identical" || echo "different"))" >&2
+origin_a=$(binary_origin "$scratch/slipfront-a" "$src_a" "$src_b")
+origin_b=$(binary_origin "$scratch/slipfront-b" "$src_b" "$src_a")
+echo "  A: fresh compile (cargo), $origin_a" >&2
+echo "  B: fresh compile (cargo), $origin_b" >&2
 
 # ---------------------------------------------------------------------------------------------
 # The matrix.
@@ -182,7 +220,7 @@ integrator_sets() {
 
 # How case $1 runs with integrator $2: extra --set arguments (none: the case's full t_end), or
 # "skip". Chosen from single runs of e8215ae on this 2-core machine (seconds in brackets) so
-# that one binary's whole matrix takes ~2 minutes with 2 jobs. The 10 x 1 cases run their full
+# that one binary's whole matrix takes under 3 minutes with 2 jobs. The 10 x 1 cases run their full
 # 1000 s (1-4 s each) but for adaptive Wilson, slow through slip at 1e-6 (paper 281 s), which
 # stops just past its first events (paper and triangular_inverted: 4 events by 440 s [4 s];
 # uniform_low: 6 by 360 s [3 s]; uniform_high: 10 by 950 s [2 s]). scaling_100x10 (first slip
@@ -330,7 +368,8 @@ for case in "${cases[@]}"; do
             "$(cat "$da/seconds")" "$(cat "$db/seconds")" "$note"
     done
 done
-echo "A = $label_a: matrix ${time_a} s; B = $label_b: matrix ${time_b} s (${jobs} parallel runs)"
+echo "A = $label_a, sha256 $sum_a, $origin_a: matrix ${time_a} s"
+echo "B = $label_b, sha256 $sum_b, $origin_b: matrix ${time_b} s (${jobs} parallel runs each)"
 extra="$na n/a, $skipped skipped"
 [[ -z "$keep" ]] || extra+="; outputs kept in $keep"
 if ((differ == 0)); then
