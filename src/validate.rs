@@ -40,9 +40,9 @@ impl<'a> Checker<'a> {
     }
 
     /// Records a violation of `key` with a free-form rule.
-    pub fn fail(&mut self, key: &str, value: impl fmt::Display, rule: impl Into<String>) {
+    pub fn fail(&mut self, key: &str, value: impl ValueText, rule: impl Into<String>) {
         let key = self.key(key);
-        self.violations.push(Violation { key, value: value.to_string(), rule: rule.into() });
+        self.violations.push(Violation { key, value: value.text(), rule: rule.into() });
     }
 
     /// `value` must be a finite number.
@@ -74,3 +74,35 @@ impl<'a> Checker<'a> {
         self.violations.extend(other.violations);
     }
 }
+
+/// A number as a person reads it: plain up to eight characters (`0.5`, `1000`, `400.0001`),
+/// else whichever of the plain and the exponent form is shorter (`1e-7`, `1e-320`, `1e300`,
+/// not dozens or hundreds of digits). Both forms read back to the same `f64`.
+pub fn shortest(x: f64) -> String {
+    let plain = x.to_string();
+    let exponent = format!("{x:e}");
+    if plain.len() <= 8 || plain.len() <= exponent.len() { plain } else { exponent }
+}
+
+/// How a value is written in a [`Violation`]: numbers in their [`shortest`] form.
+pub trait ValueText {
+    fn text(&self) -> String;
+}
+
+impl ValueText for f64 {
+    fn text(&self) -> String {
+        shortest(*self)
+    }
+}
+
+macro_rules! value_text_as_display {
+    ($($t:ty),*) => {$(
+        impl ValueText for $t {
+            fn text(&self) -> String {
+                self.to_string()
+            }
+        }
+    )*};
+}
+
+value_text_as_display!(i32, i64, u32, u64, usize, &str, String);

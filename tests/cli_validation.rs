@@ -51,7 +51,7 @@ fn friction_rules() {
         ("friction.m=0", "friction.m = 0 must be greater than 0"),
         ("friction.xi=-0.1", "friction.xi = -0.1 must be greater than or equal to 0"),
         ("friction.n=-2", "friction.n = -2 must be greater than 0"),
-        ("friction.f0=-1e-7", "friction.f0 = -0.0000001 must be greater than or equal to 0"),
+        ("friction.f0=-1e-7", "friction.f0 = -1e-7 must be greater than or equal to 0"),
         (
             "friction.structure0=2.5",
             "friction.structure0 = 2.5 must lie in [1, friction.mu_s/friction.mu_k] = [1, 2] (the degree of structure 1/R*)",
@@ -78,7 +78,7 @@ fn time_rules() {
     expect_invalid(
         &c,
         &["time.dt=1e-9"],
-        "time.dt = 0.000000001 gives 1.000e12 steps for time.t_end = 1000 s; at most 1e9 are allowed",
+        "time.dt = 1e-9 gives 1.000e12 steps for time.t_end = 1000 s; at most 1e9 are allowed",
     );
     expect_invalid(
         &c,
@@ -144,7 +144,7 @@ fn time_rules() {
     expect_invalid(
         &c,
         &["time.integrator=sdirk4", "time.tolerance=1e-12"],
-        "time.tolerance = 0.000000000001 must lie in [1e-11, 0.1]",
+        "time.tolerance = 1e-12 must lie in [1e-11, 0.1]",
     );
     expect_invalid(
         &c,
@@ -229,7 +229,11 @@ fn record_rules() {
         "record.nodes[0] = 0 is not allowed: a spring_block scene has no nodes",
     );
     expect_invalid(&b, &["record.quantities=[\"traction_t\", \"mu\"]"], "record.quantities[1]: unknown variant `mu`");
-    expect_invalid(&b, &["record.segments=\"some\""], "record.segments: data did not match any variant");
+    expect_invalid(
+        &b,
+        &["record.segments=\"some\""],
+        "record.segments: unknown selection \"some\", expected \"all\", \"probes\", \"auto\" or a list of indices",
+    );
 }
 
 #[test]
@@ -420,7 +424,7 @@ fn hostile_files() {
     let empty = write("empty.toml", b"");
     expect_invalid(&empty, &[], "missing field `friction`");
     let binary = write("binary.toml", &[0xff, 0xfe, 0x00, 0x80, 0x41]);
-    expect_invalid(&binary, &[], "stream did not contain valid UTF-8");
+    expect_invalid(&binary, &[], "it is not UTF-8 text");
     expect_invalid(dir.to_str().unwrap(), &[], "Is a directory");
     let no_kind = write("no_kind.toml", text.replace("kind = \"spring_block\"", "").as_bytes());
     expect_invalid(&no_kind, &[], "missing field `kind`");

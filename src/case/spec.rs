@@ -506,13 +506,49 @@ fn default_spatial() -> bool {
 }
 
 /// Which segments or nodes get time series.
-#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 #[serde(untagged)]
 pub enum Selection {
     /// `"all"`, `"probes"` or `"auto"` (the default).
     Named(SelectionName),
     /// Explicit indices from the left.
     Indices(Vec<usize>),
+}
+
+/// The forms a selection takes, for error messages.
+const SELECTION_FORMS: &str = "\"all\", \"probes\", \"auto\" or a list of indices such as [0, 4, 9]";
+
+/// Read by hand: serde's untagged enums answer a wrong value with "data did not match any
+/// variant of untagged enum Selection", without saying what is allowed.
+impl<'de> Deserialize<'de> for Selection {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Forms;
+        impl<'de> serde::de::Visitor<'de> for Forms {
+            type Value = Selection;
+
+            fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str(SELECTION_FORMS)
+            }
+
+            fn visit_str<E: serde::de::Error>(self, value: &str) -> Result<Selection, E> {
+                match value {
+                    "all" => Ok(Selection::Named(SelectionName::All)),
+                    "probes" => Ok(Selection::Named(SelectionName::Probes)),
+                    "auto" => Ok(Selection::Named(SelectionName::Auto)),
+                    other => Err(E::custom(format!("unknown selection \"{other}\", expected {SELECTION_FORMS}"))),
+                }
+            }
+
+            fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Selection, A::Error> {
+                let mut indices = Vec::new();
+                while let Some(index) = seq.next_element::<usize>()? {
+                    indices.push(index);
+                }
+                Ok(Selection::Indices(indices))
+            }
+        }
+        deserializer.deserialize_any(Forms)
+    }
 }
 
 impl Default for Selection {
@@ -555,9 +591,21 @@ impl RecordSpec {
             SceneSpec::Block(b) => (b.nx + 1, b.nx),
             _ => (0, 1),
         };
+        for (i, quantity) in self.quantities.iter().enumerate() {
+            if let Some(first) = self.quantities[..i].iter().position(|q| q == quantity) {
+                c.fail(
+                    &format!("quantities[{i}]"),
+                    format!("\"{}\"", quantity.name()),
+                    format!("repeats quantities[{first}]: list each quantity once"),
+                );
+            }
+        }
         for (selection, key, count) in [(&self.segments, "segments", segments), (&self.nodes, "nodes", nodes)] {
             if let Selection::Indices(list) = selection {
                 for (i, &index) in list.iter().enumerate() {
+                    if let Some(first) = list[..i].iter().position(|&j| j == index) {
+                        c.fail(&format!("{key}[{i}]"), index, format!("repeats {key}[{first}]: list each index once"));
+                    }
                     if index >= count {
                         let rule = if count == 0 {
                             format!("is not allowed: a {} scene has no nodes", scene.kind())

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, fail};
+use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, fail, print};
 use crate::inspect;
 use crate::inspect::check::{Expectations, check};
 use crate::study::replay;
@@ -55,7 +55,9 @@ pub fn command(args: CheckArgs) -> ExitCode {
             Err(e) => return fail(EXIT_INVALID, e),
         }
     };
-    print!("{}", report.render());
+    if let Err(exit) = print(&report.render()) {
+        return exit;
+    }
     if report.passed() { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED) }
 }
 

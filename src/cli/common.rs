@@ -1,5 +1,6 @@
 //! What the commands share: exit codes, the error line, and where a live copy goes.
 
+use std::io::Write;
 use std::process::ExitCode;
 
 use clap::Args;
@@ -38,4 +39,15 @@ impl ViewerArgs {
 pub(crate) fn fail(code: u8, message: impl std::fmt::Display) -> ExitCode {
     eprintln!("slipfront: {message}");
     ExitCode::from(code)
+}
+
+/// Writes `text` to standard output. A closed pipe (`slipfront check X.rrd | head -1`) ends
+/// the output quietly, as Unix tools do; any other failure (a full device) is an error, exit 1.
+pub(crate) fn print(text: &str) -> Result<(), ExitCode> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(e) => Err(fail(EXIT_FAILED, format!("cannot write to standard output: {e}"))),
+    }
 }

@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, fail};
+use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, fail, print};
 use crate::inspect;
 use crate::study::figures;
 
@@ -26,10 +26,8 @@ pub fn command(args: FiguresArgs) -> ExitCode {
     };
     match figures::write_figures(&recording, &args.out) {
         Ok(paths) => {
-            for path in paths {
-                println!("{}", path.display());
-            }
-            ExitCode::SUCCESS
+            let listing: String = paths.iter().map(|path| format!("{}\n", path.display())).collect();
+            print(&listing).err().unwrap_or(ExitCode::SUCCESS)
         }
         Err(e) => fail(EXIT_FAILED, e),
     }

@@ -3,6 +3,7 @@
 pub mod check;
 pub mod common;
 pub mod figures;
+pub mod outputs;
 pub mod replay;
 pub mod run;
 
@@ -31,8 +32,9 @@ pub enum Command {
     /// Run a case file and write its Rerun recording and event catalog to the output folder.
     ///
     /// Exit codes: 0 success, 1 the run failed (the outputs hold everything up to the last good
-    /// step), 2 invalid input, 130 interrupted by Ctrl-C (SIGINT), 143 by SIGTERM (outputs
-    /// finished up to the last step in both).
+    /// step), 2 invalid input, 130 interrupted by Ctrl-C (SIGINT), 143 by SIGTERM, 129 by
+    /// SIGHUP, 138 and 140 by SIGUSR1 and SIGUSR2 (outputs finished up to the last step in
+    /// every case).
     Run(RunArgs),
     /// Check a recording: the schema's entities, sim_time monotonic and covering the run, no NaN
     /// or Inf, equal row counts, the stored blueprint, and optional expectations.

@@ -6,10 +6,12 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, fail};
+use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, fail, print};
+use crate::cli::outputs::{self, Named};
 use crate::inspect;
 use crate::sink::rerun::{Viewer, open_stream};
 use crate::study::replay;
+use crate::validate::shortest;
 
 #[derive(Debug, Args)]
 pub struct ReplayArgs {
@@ -25,12 +27,24 @@ pub struct ReplayArgs {
     pub speed: Option<f64>,
 }
 
+/// The paces `--speed` may ask for: slower than a millionth of real time would wait days per
+/// simulated second; faster than 1e12 is no pace at all (leave `--speed` out).
+const SPEEDS: (f64, f64) = (1e-6, 1e12);
+
 /// Runs `slipfront replay`.
 pub fn command(args: ReplayArgs) -> ExitCode {
     if let Some(speed) = args.speed
-        && !(speed.is_finite() && speed > 0.0)
+        && !(SPEEDS.0..=SPEEDS.1).contains(&speed)
     {
-        return fail(EXIT_INVALID, format!("--speed {speed}: must be a finite number greater than 0"));
+        return fail(
+            EXIT_INVALID,
+            format!(
+                "--speed {}: must lie in [{:e}, {:e}] (simulated seconds per wall-clock second)",
+                shortest(speed),
+                SPEEDS.0,
+                SPEEDS.1
+            ),
+        );
     }
     let log = match inspect::mcap::read(&args.log) {
         Ok(log) => log,
@@ -46,6 +60,13 @@ pub fn command(args: ReplayArgs) -> ExitCode {
             args.log.with_file_name(format!("{stem}.replay.rrd"))
         })
     });
+    let claimed = rrd
+        .as_deref()
+        .map(|path| outputs::claim(&[Named { role: "MCAP log", path: &args.log }], &[Named { role: "--rrd", path }]));
+    let _locks = match claimed.transpose() {
+        Ok(locks) => locks,
+        Err(e) => return fail(EXIT_INVALID, e),
+    };
     let stream = match open_stream(rrd.as_deref(), &viewer, &log.header.plan.case) {
         Ok(Some(stream)) => stream,
         Ok(None) => return fail(EXIT_INVALID, "nothing to replay into"),
@@ -66,8 +87,9 @@ pub fn command(args: ReplayArgs) -> ExitCode {
             ),
         ),
         None => {
-            println!("slipfront: replayed {} recorded steps up to t = {last} s into {into}", log.frames.len());
-            ExitCode::SUCCESS
+            let line =
+                format!("slipfront: replayed {} recorded steps up to t = {last} s into {into}\n", log.frames.len());
+            print(&line).err().unwrap_or(ExitCode::SUCCESS)
         }
     }
 }

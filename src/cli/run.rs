@@ -7,10 +7,11 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use clap::Args;
-use signal_hook::consts::{SIGINT, SIGTERM};
+use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM, SIGUSR1, SIGUSR2};
 
 use crate::case;
-use crate::cli::common::{EXIT_FAILED, EXIT_INTERRUPTED, EXIT_INVALID, ViewerArgs, fail};
+use crate::cli::common::{EXIT_FAILED, EXIT_INTERRUPTED, EXIT_INVALID, ViewerArgs, fail, print};
+use crate::cli::outputs::{self, Named};
 use crate::frame::SceneKind;
 use crate::record::schema::RecordingPlan;
 use crate::run::{LoopOptions, Outcome, run};
@@ -69,6 +70,11 @@ pub fn command(args: RunArgs) -> ExitCode {
         Ok(scene) => scene,
         Err(e) => return fail(EXIT_FAILED, e),
     };
+    let block = scene.layout().kind == SceneKind::Block;
+    let _locks = match outputs.claim(&args, block) {
+        Ok(locks) => locks,
+        Err(e) => return fail(EXIT_INVALID, e),
+    };
     let mut sinks = match outputs.sinks(&args, &case) {
         Ok(sinks) => sinks,
         Err(exit) => return exit,
@@ -80,7 +86,7 @@ pub fn command(args: RunArgs) -> ExitCode {
         &mut sinks,
         LoopOptions { progress: !args.quiet, interrupt: Some(&interrupt), ..LoopOptions::for_case(&case) },
     );
-    let written = outputs.written(&args, scene.layout().kind == SceneKind::Block);
+    let written = outputs.written(&args, block);
     report(&args, &case, outcome, &written, signal.load(Ordering::SeqCst), scene.time())
 }
 
@@ -125,6 +131,22 @@ impl Outputs {
         Ok(sinks)
     }
 
+    /// Refuses outputs that collide with each other or with the case file, or whose folder
+    /// cannot be written, and locks them for the run ([`outputs::claim`]).
+    fn claim(&self, args: &RunArgs, block: bool) -> Result<outputs::Locks, String> {
+        let mut written = vec![Named { role: "--events", path: &self.events }];
+        if block {
+            written.push(Named { role: "the rupture catalog", path: &self.ruptures });
+        }
+        if let Some(rrd) = &self.rrd {
+            written.push(Named { role: "--rrd", path: rrd });
+        }
+        if let Some(mcap) = &args.mcap {
+            written.push(Named { role: "--mcap", path: mcap });
+        }
+        outputs::claim(&[Named { role: "case file", path: &args.case }], &written)
+    }
+
     /// The files written, for the summary.
     fn written(&self, args: &RunArgs, block: bool) -> String {
         let mut outputs: Vec<String> = self.rrd.iter().chain(&args.mcap).map(|p| p.display().to_string()).collect();
@@ -136,13 +158,18 @@ impl Outputs {
     }
 }
 
-/// SIGINT and SIGTERM stop the loop after the current step; the sinks then finish their
+/// The signals that stop a run cleanly: Ctrl-C, a batch system's or a user's kill, a closed
+/// terminal, and the user signals schedulers send ahead of a time limit.
+const STOPPING: [(i32, &str); 5] =
+    [(SIGINT, "SIGINT"), (SIGTERM, "SIGTERM"), (SIGHUP, "SIGHUP"), (SIGUSR1, "SIGUSR1"), (SIGUSR2, "SIGUSR2")];
+
+/// The [`STOPPING`] signals stop the loop after the current step; the sinks then finish their
 /// files, and the exit code is 128 + the signal's number, as a shell expects. A second
 /// signal while finishing ends the process at once. Returns the stop flag and the signal.
 fn catch_signals() -> (Arc<AtomicBool>, Arc<AtomicUsize>) {
     let interrupt = Arc::new(AtomicBool::new(false));
     let signal = Arc::new(AtomicUsize::new(0));
-    for number in [SIGINT, SIGTERM] {
+    for (number, _) in STOPPING {
         // Registering can only fail for signals that cannot be caught; these two can.
         let _ = signal_hook::flag::register_conditional_shutdown(number, 128 + number, interrupt.clone());
         let _ = signal_hook::flag::register(number, interrupt.clone());
@@ -161,7 +188,7 @@ fn report(args: &RunArgs, case: &case::Case, outcome: Outcome, written: &str, si
                 } else {
                     String::new()
                 };
-                println!(
+                let line = format!(
                     "slipfront: {} ({}): {steps} steps{rejected} to t = {} s in {:.2} s; {} slip events, {} ruptures: {written}",
                     args.case.display(),
                     case.scene.kind(),
@@ -170,12 +197,15 @@ fn report(args: &RunArgs, case: &case::Case, outcome: Outcome, written: &str, si
                     catalog.events.len(),
                     catalog.ruptures.len(),
                 );
+                if let Err(exit) = print(&format!("{line}\n")) {
+                    return exit;
+                }
             }
             ExitCode::SUCCESS
         }
         Outcome::Interrupted { steps, .. } => {
-            let (code, name) = match signal {
-                n if n == SIGTERM as usize => (128 + SIGTERM as u8, "SIGTERM"),
+            let (code, name) = match STOPPING.iter().find(|(n, _)| *n as usize == signal) {
+                Some(&(n, name)) if n != SIGINT => (128 + n as u8, name),
                 _ => (EXIT_INTERRUPTED, "SIGINT"),
             };
             fail(code, format!("interrupted by {name} after {steps} steps (t = {time} s); outputs finished: {written}"))

@@ -59,6 +59,10 @@ pub struct FrictionParams {
     pub rstar_law: RStarLaw,
 }
 
+/// How far (relative) `structure0` may exceed the rounded `μ_s/μ_k`: a few units in the last
+/// place, so that `structure0 = μ_s/μ_k` computed exactly is accepted.
+const STRUCTURE_SLACK: f64 = 4.0 * f64::EPSILON;
+
 impl FrictionParams {
     /// The paper's Table 1 and Table 3 values in SI units (`α = 1000 kPa/m = 1e6 Pa/m`).
     pub fn paper() -> Self {
@@ -91,6 +95,11 @@ impl FrictionParams {
         self.mu_k / self.mu_s
     }
 
+    /// The initial degree of structure `1/R*₀`: `structure0`, within `[1, μ_s/μ_k]`.
+    pub fn initial_structure(&self) -> f64 {
+        self.structure0.min(self.max_structure())
+    }
+
     /// The upper bound of the degree of structure, `μ_s/μ_k`.
     pub fn max_structure(&self) -> f64 {
         self.mu_s / self.mu_k
@@ -121,7 +130,10 @@ impl FrictionParams {
             && self.mu_k < self.mu_s
         {
             let max = self.max_structure();
-            if !(1.0..=max).contains(&self.structure0) {
+            // μ_s/μ_k rounded may fall a few ulps below the structure0 a user derived from the
+            // same two numbers (0.3/0.1 = 2.9999999999999996 against 3): the bound accepts its
+            // own exact value, and the initial state takes the rounded bound.
+            if !(1.0..=max * (1.0 + STRUCTURE_SLACK)).contains(&self.structure0) {
                 let rule = format!(
                     "must lie in [1, {}/{}] = [1, {}] (the degree of structure 1/R*)",
                     c.key("mu_s"),

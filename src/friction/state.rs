@@ -25,7 +25,7 @@ impl ContactState {
     /// structure `structure0`, no plastic slip. A point without normal traction carries none.
     pub fn initial(params: &FrictionParams, traction_n: f64, direction: f64) -> Self {
         let traction_t = if traction_n > 0.0 { params.f0 * direction.signum() } else { 0.0 };
-        Self { traction_t, traction_n, structure: params.structure0, plastic_slip: 0.0 }
+        Self { traction_t, traction_n, structure: params.initial_structure(), plastic_slip: 0.0 }
     }
 
     /// Similarity ratio of the superloading surface, `R* = 1 / (1/R*)`.

@@ -58,7 +58,38 @@ impl Expectations {
     /// Reads an expectations file; errors name the file and the key.
     pub fn load(path: &Path) -> Result<Self, String> {
         let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+        let expect: Self = toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        expect.validate().map_err(|e| format!("{}: {e}", path.display()))?;
+        Ok(expect)
+    }
+
+    /// Refuses what no recording could be judged by: a bound or time that is not a finite
+    /// number (`min = nan` would pass everything), and an empty range.
+    fn validate(&self) -> Result<(), String> {
+        for (i, at) in self.at.iter().enumerate() {
+            for (key, value) in [("time", Some(at.time)), ("min", at.min), ("max", at.max)] {
+                if let Some(v) = value
+                    && !v.is_finite()
+                {
+                    return Err(format!("at[{i}].{key} = {v} must be a finite number"));
+                }
+            }
+            if let (Some(min), Some(max)) = (at.min, at.max)
+                && min > max
+            {
+                return Err(format!("at[{i}].min = {min} must not exceed at[{i}].max = {max}"));
+            }
+        }
+        for (key, range) in [("slip_events", self.events.slip_events), ("ruptures", self.events.ruptures)] {
+            if let Some([lo, hi]) = range
+                && lo > hi
+            {
+                return Err(format!(
+                    "events.{key} = [{lo}, {hi}] is empty: the first bound must not exceed the second"
+                ));
+            }
+        }
+        Ok(())
     }
 }
 

@@ -18,7 +18,8 @@ pub fn replay(log: &Log, stream: RecordingStream, speed: Option<f64>) -> Result<
     let start = Instant::now();
     for frame in &log.frames {
         if let Some(speed) = speed {
-            let due = Duration::from_secs_f64(frame.time / speed);
+            // A wait too long for a Duration (a tiny speed, a damaged time) waits the longest.
+            let due = Duration::try_from_secs_f64(frame.time / speed).unwrap_or(Duration::MAX);
             if let Some(wait) = due.checked_sub(start.elapsed()) {
                 std::thread::sleep(wait);
             }

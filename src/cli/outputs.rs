@@ -1,0 +1,95 @@
+//! The policy for every file a command writes. Before anything is solved or replayed, each
+//! output path is resolved (symbolic links and `..` followed), and the command is refused
+//! (exit 2) where two outputs name one file, where an output names one of the command's inputs
+//! (the case file, the MCAP log being replayed), or where an output's folder does not exist or
+//! cannot be written. While the command runs it holds an exclusive lock on each output: a
+//! second run writing the same file is refused at once, naming the file, instead of
+//! interleaving its writes with the first's.
+
+use std::fs::{File, OpenOptions, TryLockError};
+use std::path::{Path, PathBuf};
+
+/// A file a command reads or writes, with the option or role that names it.
+pub struct Named<'a> {
+    pub role: &'a str,
+    pub path: &'a Path,
+}
+
+/// Locks held on a command's outputs until it ends.
+pub struct Locks(#[allow(dead_code)] Vec<File>);
+
+/// Checks the outputs against each other and against the inputs, checks their folders, and
+/// locks them. The error names both paths or the folder, and what to do.
+pub fn claim(inputs: &[Named<'_>], outputs: &[Named<'_>]) -> Result<Locks, String> {
+    let resolved: Vec<PathBuf> = outputs.iter().map(|o| resolve(o.path)).collect();
+    for (i, output) in outputs.iter().enumerate() {
+        if let Some(j) = (0..i).find(|&j| resolved[j] == resolved[i]) {
+            return Err(format!(
+                "{} {} and {} {} name the same file: give each output its own path",
+                outputs[j].role,
+                outputs[j].path.display(),
+                output.role,
+                output.path.display()
+            ));
+        }
+        if let Some(input) = inputs.iter().find(|input| resolve(input.path) == resolved[i]) {
+            return Err(format!(
+                "{} {} would overwrite the {} it reads ({}): write it elsewhere",
+                output.role,
+                output.path.display(),
+                input.role,
+                input.path.display()
+            ));
+        }
+        check_folder(output)?;
+    }
+    outputs.iter().map(lock).collect::<Result<Vec<_>, _>>().map(Locks)
+}
+
+/// `path` made absolute, through its folder's canonical form where that exists (the file
+/// itself may not exist yet).
+fn resolve(path: &Path) -> PathBuf {
+    if let Ok(canonical) = path.canonicalize() {
+        return canonical;
+    }
+    let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    match (absolute.parent().and_then(|p| p.canonicalize().ok()), absolute.file_name()) {
+        (Some(folder), Some(name)) => folder.join(name),
+        _ => absolute,
+    }
+}
+
+/// The output's folder exists and a file can be created in it.
+fn check_folder(output: &Named<'_>) -> Result<(), String> {
+    let folder = match output.path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !folder.is_dir() {
+        return Err(format!(
+            "{} {}: the folder {} does not exist",
+            output.role,
+            output.path.display(),
+            folder.display()
+        ));
+    }
+    let probe = folder.join(format!(".slipfront-write-test-{}", std::process::id()));
+    std::fs::write(&probe, b"")
+        .and_then(|()| std::fs::remove_file(&probe))
+        .map_err(|e| format!("{} {}: cannot write in {}: {e}", output.role, output.path.display(), folder.display()))
+}
+
+/// An exclusive lock on the output file (created empty if missing, never truncated here).
+fn lock(output: &Named<'_>) -> Result<File, String> {
+    let describe = |e: std::io::Error| format!("{} {}: {e}", output.role, output.path.display());
+    let file = OpenOptions::new().create(true).truncate(false).write(true).open(output.path).map_err(describe)?;
+    match file.try_lock() {
+        Ok(()) => Ok(file),
+        Err(TryLockError::WouldBlock) => Err(format!(
+            "{} {} is being written by another slipfront command: wait for it, or write elsewhere",
+            output.role,
+            output.path.display()
+        )),
+        Err(TryLockError::Error(e)) => Err(describe(e)),
+    }
+}

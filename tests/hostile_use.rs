@@ -1,0 +1,259 @@
+//! Hostile use of the command line, one test per class of failure: outputs that would clobber
+//! each other, their inputs or another run's; standard output closed or full; the signals a
+//! batch system or a closed terminal sends; expectations, selections and derived bounds that
+//! validation must judge exactly; a case file that is no case file. Each class fails (exit 0
+//! with a corrupt file, a panic, a hang or a refusal of valid input) without the mechanism
+//! that this test pins.
+
+use std::fs::File;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+fn binary() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_slipfront"))
+}
+
+fn case(name: &str) -> String {
+    format!("{}/cases/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scratch(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("slipfront-hostile-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn code(output: &Output) -> i32 {
+    output.status.code().unwrap_or(-1)
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// `slipfront run CASE --quiet --out-dir DIR ARGS...` with a short spring block by default.
+fn run(case_path: &str, dir: &Path, args: &[&str]) -> Output {
+    binary().arg("run").arg(case_path).arg("--quiet").arg("--out-dir").arg(dir).args(args).output().unwrap()
+}
+
+fn spring(dir: &Path, args: &[&str]) -> Output {
+    let mut all = vec!["--set", "time.t_end=5"];
+    all.extend_from_slice(args);
+    run(&case("spring_block.toml"), dir, &all)
+}
+
+fn assert_refused(output: &Output, message: &str) {
+    let text = stderr(output);
+    assert_eq!(code(output), 2, "expected exit 2, stderr: {text}");
+    assert!(text.contains(message), "expected `{message}` in: {text}");
+    assert!(!text.contains("panicked"), "{text}");
+}
+
+#[test]
+fn two_outputs_on_one_path_are_refused_before_solving() {
+    let dir = scratch("collide");
+    let same = dir.join("x");
+    let x = same.to_str().unwrap();
+    for (a, b, roles) in
+        [("--rrd", "--mcap", "--rrd"), ("--rrd", "--events", "--events"), ("--mcap", "--events", "--events")]
+    {
+        let output = spring(&dir, &[a, x, b, x]);
+        assert_refused(&output, "name the same file: give each output its own path");
+        assert!(stderr(&output).contains(roles), "{}", stderr(&output));
+    }
+    // A block writes its rupture catalog beside the events: --rrd may not take that name.
+    let ruptures = dir.join("paper_triangular.ruptures.csv");
+    let output =
+        run(&case("paper_triangular.toml"), &dir, &["--set", "time.t_end=1", "--rrd", ruptures.to_str().unwrap()]);
+    assert_refused(&output, "the rupture catalog");
+}
+
+#[test]
+fn an_output_never_overwrites_an_input() {
+    let dir = scratch("inputs");
+    let copy = dir.join("c.toml");
+    std::fs::copy(case("spring_block.toml"), &copy).unwrap();
+    let before = std::fs::read(&copy).unwrap();
+    let output = run(copy.to_str().unwrap(), &dir, &["--set", "time.t_end=5", "--rrd", copy.to_str().unwrap()]);
+    assert_refused(&output, "would overwrite the case file it reads");
+    assert_eq!(std::fs::read(&copy).unwrap(), before, "the case file was changed");
+
+    let log = dir.join("log.mcap");
+    assert_eq!(code(&spring(&dir, &["--mcap", log.to_str().unwrap()])), 0);
+    let before = std::fs::read(&log).unwrap();
+    let output = binary().arg("replay").arg(&log).arg("--rrd").arg(&log).output().unwrap();
+    assert_refused(&output, "would overwrite the MCAP log it reads");
+    assert_eq!(std::fs::read(&log).unwrap(), before, "the log was changed");
+}
+
+#[test]
+fn a_second_writer_of_the_same_output_is_refused() {
+    let dir = scratch("lock");
+    let events = dir.join("spring_block.events.csv");
+    // Another slipfront command holding the file, as a run in progress does.
+    let held = File::create(&events).unwrap();
+    held.try_lock().unwrap();
+    let output = spring(&dir, &[]);
+    assert_refused(&output, "is being written by another slipfront command");
+    drop(held);
+    assert_eq!(code(&spring(&dir, &[])), 0, "{}", stderr(&spring(&dir, &[])));
+}
+
+#[test]
+fn outputs_in_a_missing_folder_are_refused_before_solving() {
+    let dir = scratch("missing");
+    let output = spring(&dir, &["--events", "/nonexistent-slipfront-folder/e.csv"]);
+    assert_refused(&output, "the folder /nonexistent-slipfront-folder does not exist");
+}
+
+/// A finished spring-block recording to read back.
+fn recording(dir: &Path) -> PathBuf {
+    assert_eq!(code(&spring(dir, &[])), 0);
+    dir.join("spring_block.rrd")
+}
+
+#[test]
+fn a_full_standard_output_is_an_error_and_a_closed_one_ends_quietly() {
+    let dir = scratch("stdout");
+    let rrd = recording(&dir);
+    let full = binary().arg("check").arg(&rrd).stdout(File::create("/dev/full").unwrap()).output().unwrap();
+    assert_eq!(code(&full), 1, "{}", stderr(&full));
+    assert!(stderr(&full).contains("cannot write to standard output"), "{}", stderr(&full));
+    assert!(!stderr(&full).contains("panicked"), "{}", stderr(&full));
+
+    let mut child = binary().arg("check").arg(&rrd).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    drop(child.stdout.take()); // the reader goes away before anything is written
+    let closed = child.wait_with_output().unwrap();
+    assert_eq!(code(&closed), 0, "{}", stderr(&closed));
+    assert!(stderr(&closed).is_empty(), "a closed pipe should end quietly: {}", stderr(&closed));
+}
+
+/// Starts the paper case for long enough to be stopped, sends `signal` once it runs, and
+/// returns the run's output and folder.
+fn stopped_by(signal: &str) -> (Output, PathBuf) {
+    let dir = scratch(&format!("signal-{signal}"));
+    let child = binary()
+        .arg("run")
+        .arg(case("paper_triangular.toml"))
+        .args(["--quiet", "--set", "time.t_end=100000", "--out-dir"])
+        .arg(&dir)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let events = dir.join("paper_triangular.events.csv");
+    let start = Instant::now();
+    while std::fs::metadata(&events).map_or(true, |m| m.len() == 0) && start.elapsed() < Duration::from_secs(30) {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    std::thread::sleep(Duration::from_millis(300));
+    let sent = Command::new("kill").arg(format!("-{signal}")).arg(child.id().to_string()).status().unwrap();
+    assert!(sent.success());
+    (child.wait_with_output().unwrap(), dir)
+}
+
+#[test]
+fn hang_up_and_user_signals_stop_a_run_with_its_outputs_finished() {
+    for (signal, exit) in [("HUP", 129), ("USR1", 138), ("USR2", 140)] {
+        let (output, dir) = stopped_by(signal);
+        assert_eq!(code(&output), exit, "SIG{signal}: {}", stderr(&output));
+        assert!(stderr(&output).contains(&format!("interrupted by SIG{signal}")), "{}", stderr(&output));
+        let check = binary().arg("check").arg(dir.join("paper_triangular.rrd")).output().unwrap();
+        assert_eq!(code(&check), 0, "SIG{signal}: {}", String::from_utf8_lossy(&check.stdout));
+    }
+}
+
+#[test]
+fn an_expectation_that_is_not_a_finite_number_is_refused() {
+    let dir = scratch("expect");
+    let rrd = recording(&dir);
+    for (line, message) in [
+        ("min = nan", "at[0].min = NaN must be a finite number"),
+        ("max = inf", "at[0].max = inf must be a finite number"),
+        ("min = 2.0\nmax = 1.0", "at[0].min = 2 must not exceed at[0].max = 1"),
+    ] {
+        let expect = dir.join("expect.toml");
+        std::fs::write(&expect, format!("[[at]]\nentity = \"contact/friction_force\"\ntime = 1.0\n{line}\n")).unwrap();
+        let output = binary().arg("check").arg(&rrd).arg("--expect").arg(&expect).output().unwrap();
+        assert_refused(&output, message);
+    }
+}
+
+#[test]
+fn repeated_selections_are_refused() {
+    let dir = scratch("duplicates");
+    assert_refused(
+        &spring(&dir, &["--set", "record.quantities=[\"slip\",\"slip\"]"]),
+        "record.quantities[1] = \"slip\" repeats quantities[0]: list each quantity once",
+    );
+    let paper = case("paper_triangular.toml");
+    let output =
+        run(&paper, &dir, &["--set", "time.t_end=1", "--set", "record.segments=[1,1]", "--set", "record.nodes=[2,2]"]);
+    assert_refused(&output, "record.segments[1] = 1 repeats segments[0]: list each index once");
+    assert!(stderr(&output).contains("record.nodes[1] = 2 repeats nodes[0]"), "{}", stderr(&output));
+}
+
+#[test]
+fn a_bound_derived_from_two_inputs_accepts_its_own_exact_value() {
+    let dir = scratch("derived");
+    // 0.3/0.1 rounds to 2.9999999999999996, below the 3 it is in exact arithmetic.
+    let output =
+        spring(&dir, &["--set", "friction.mu_s=0.3", "--set", "friction.mu_k=0.1", "--set", "friction.structure0=3.0"]);
+    assert_eq!(code(&output), 0, "{}", stderr(&output));
+    // A value really above the bound is still refused.
+    let output = spring(
+        &dir,
+        &["--set", "friction.mu_s=0.3", "--set", "friction.mu_k=0.1", "--set", "friction.structure0=3.0001"],
+    );
+    assert_refused(&output, "friction.structure0 = 3.0001 must lie in [1, friction.mu_s/friction.mu_k]");
+}
+
+#[test]
+fn a_selection_that_is_no_selection_names_the_allowed_forms() {
+    let dir = scratch("selection");
+    let output = run(&case("paper_triangular.toml"), &dir, &["--set", "time.t_end=1", "--set", "record.segments=none"]);
+    assert_refused(&output, "unknown selection \"none\", expected \"all\", \"probes\", \"auto\" or a list of indices");
+}
+
+#[test]
+fn a_replay_pace_out_of_range_is_refused() {
+    let dir = scratch("speed");
+    let log = dir.join("log.mcap");
+    assert_eq!(code(&spring(&dir, &["--mcap", log.to_str().unwrap()])), 0);
+    for (speed, shown) in [("1e-20", "1e-20"), ("0", "0"), ("-1", "-1"), ("nan", "NaN"), ("1e300", "1e300")] {
+        let output = binary().arg("replay").arg(&log).arg(format!("--speed={speed}")).output().unwrap();
+        assert_refused(
+            &output,
+            &format!("--speed {shown}: must lie in [1e-6, 1e12] (simulated seconds per wall-clock second)"),
+        );
+    }
+}
+
+#[test]
+fn a_case_file_larger_than_any_case_is_refused_without_reading_it_all() {
+    let dir = scratch("size");
+    let big = dir.join("big.toml");
+    std::fs::write(&big, vec![b'#'; 5 << 20]).unwrap();
+    assert_refused(&run(big.to_str().unwrap(), &dir, &[]), "it is larger than 4 MiB");
+    let start = Instant::now();
+    let output = run("/dev/zero", &dir, &[]);
+    assert_refused(&output, "it is larger than 4 MiB");
+    assert!(start.elapsed() < Duration::from_secs(20), "reading /dev/zero took {:?}", start.elapsed());
+}
+
+#[test]
+fn numbers_in_messages_are_written_in_their_shortest_form() {
+    let dir = scratch("shortest");
+    for (set, shown) in [
+        ("time.dt=1e-320", "time.dt = 1e-320 "),
+        ("record.magnification=-1e300", "record.magnification = -1e300 "),
+        ("friction.f0=-1e-7", "friction.f0 = -1e-7 "),
+    ] {
+        let output = spring(&dir, &["--set", set]);
+        assert_refused(&output, shown);
+        let longest = stderr(&output).lines().map(str::len).max().unwrap_or(0);
+        assert!(longest < 200, "a {longest}-character line: {}", stderr(&output));
+    }
+}
