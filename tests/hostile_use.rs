@@ -257,3 +257,23 @@ fn numbers_in_messages_are_written_in_their_shortest_form() {
         assert!(longest < 200, "a {longest}-character line: {}", stderr(&output));
     }
 }
+
+#[test]
+fn an_initial_traction_above_the_initial_strength_is_invalid_input() {
+    let dir = scratch("strength");
+    // The spring block: f_n = 1000 Pa, mu_k = 0.2, 1/R* = 2: strength 400 Pa.
+    assert_refused(
+        &spring(&dir, &["--set", "friction.f0=400.0001"]),
+        "friction.f0 = 400.0001 must not exceed the initial strength mu_k (1/R*) f_n = 400 Pa",
+    );
+    assert_refused(&spring(&dir, &["--set", "scene.normal_traction=1e-300"]), "f_n = 1e-300 Pa");
+    assert_eq!(code(&spring(&dir, &["--set", "friction.f0=400"])), 0, "the bound itself is allowed");
+    // The block: the weakest loaded contact point is a Gauss point of the first element, where
+    // the linear traction from 0 Pa gives (1 - 1/sqrt 3)/2 x 1 m / 10 m x 1200 Pa = 25.36 Pa.
+    let output = run(
+        &case("paper_triangular.toml"),
+        &dir,
+        &["--set", "time.t_end=1", "--set", "scene.normal_traction.left=0", "--set", "friction.f0=11"],
+    );
+    assert_refused(&output, "f_n = 25.358983848");
+}

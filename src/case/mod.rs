@@ -16,7 +16,7 @@ pub use spec::*;
 
 pub use crate::case::error::CaseError;
 use crate::dynamics::Stepping;
-use crate::validate::{Checker, Violation};
+use crate::validate::{Checker, Violation, shortest};
 
 /// Reads, overrides, parses and validates a case file.
 pub fn load(path: &Path, overrides: &[String]) -> Result<Case, CaseError> {
@@ -103,7 +103,11 @@ impl Case {
         all.extend(time.violations);
         let mut scene = Checker::new("scene");
         self.scene.check(&mut scene);
+        let valid = all.is_empty() && scene.violations.is_empty();
         all.extend(scene.violations);
+        if valid {
+            all.extend(self.initial_strength_violation());
+        }
         let mut events = Checker::new("events");
         if let Some(threshold) = self.events.slip_rate_threshold {
             events.positive("slip_rate_threshold", threshold);
@@ -117,6 +121,28 @@ impl Case {
         self.record.check(&self.scene, &mut record);
         all.extend(record.violations);
         all
+    }
+
+    /// `f0` must lie on or inside the initial subloading surface of every loaded contact point
+    /// (eq. 3 with `R ≤ 1`): `f0 ≤ μ_k (1/R*₀) f_n`, binding where `f_n` is smallest.
+    fn initial_strength_violation(&self) -> Option<Violation> {
+        let (f_n, key) = self.scene.weakest_normal_traction()?;
+        let p = &self.friction;
+        let strength = p.mu_k * p.initial_structure() * f_n;
+        (p.f0 > strength).then(|| {
+            let mut c = Checker::new("friction");
+            c.fail(
+                "f0",
+                p.f0,
+                format!(
+                    "must not exceed the initial strength mu_k (1/R*) f_n = {} Pa of the weakest loaded contact \
+                     point ({key} gives it f_n = {} Pa): the initial traction would lie outside the subloading surface",
+                    shortest(strength),
+                    shortest(f_n)
+                ),
+            );
+            c.violations.remove(0)
+        })
     }
 
     /// Slip-rate threshold of the event catalog: given, or 10 × the driving velocity.

@@ -341,6 +341,25 @@ impl SceneSpec {
         }
     }
 
+    /// The smallest positive normal traction (Pa) at a contact point, and the key that sets
+    /// it; `None` where no point is loaded.
+    pub fn weakest_normal_traction(&self) -> Option<(f64, &'static str)> {
+        let (f_n, key) = match self {
+            SceneSpec::Point(p) => (p.normal_traction, "scene.normal_traction"),
+            SceneSpec::SpringBlock(s) => (s.normal_traction, "scene.normal_traction"),
+            SceneSpec::Block(b) => {
+                let mesh = crate::fem::StructuredMesh { width: b.width, height: b.height, nx: b.nx, ny: b.ny };
+                let weakest = mesh
+                    .contact_abscissae()
+                    .map(|x| b.normal_traction.at(x, b.width))
+                    .filter(|f| *f > 0.0)
+                    .fold(f64::INFINITY, f64::min);
+                (weakest, "scene.normal_traction")
+            }
+        };
+        (f_n > 0.0 && f_n.is_finite()).then_some((f_n, key))
+    }
+
     /// The velocity that drives the scene (m/s): 10 × this is the default event threshold.
     pub fn driving_velocity(&self) -> f64 {
         let v = match self {

@@ -78,7 +78,7 @@ pub fn assemble(
         let [left_x, left_y] = mesh.node_dofs(mesh.surface_node(k)).expect("bottom nodes are free");
         let [right_x, right_y] = mesh.node_dofs(mesh.surface_node(k + 1)).expect("bottom nodes are free");
         for &xi in &GAUSS_2 {
-            let x = (k as f64 + 0.5 * (1.0 + xi)) * dx;
+            let x = mesh.contact_point_x(k, xi);
             let shape = [0.5 * (1.0 - xi), 0.5 * (1.0 + xi)];
             let weight = 0.5 * dx;
             points.push(ContactPoint { dofs: [left_x, right_x], shape, weight, x });

@@ -1,5 +1,7 @@
 //! A structured rectangle of bilinear quadrilaterals (paper Fig. 6: 10 × 1 elements).
 
+use crate::fem::element::GAUSS_2;
+
 /// `nx × ny` rectangular elements over `[0, W] × [0, H]`; `y = 0` is the contact surface and
 /// `y = H` the fixed top.
 ///
@@ -15,6 +17,17 @@ pub struct StructuredMesh {
 }
 
 impl StructuredMesh {
+    /// The x (m) of bottom element `k`'s contact point at the reference coordinate `xi` in
+    /// `[-1, 1]` (a Gauss point of [`crate::fem::element::GAUSS_2`]).
+    pub fn contact_point_x(&self, k: usize, xi: f64) -> f64 {
+        (k as f64 + 0.5 * (1.0 + xi)) * self.dx()
+    }
+
+    /// The x (m) of every contact point from the left: two Gauss points per bottom element.
+    pub fn contact_abscissae(&self) -> impl Iterator<Item = f64> + '_ {
+        (0..self.nx).flat_map(move |k| GAUSS_2.map(|xi| self.contact_point_x(k, xi)))
+    }
+
     /// Element size along x (m).
     pub fn dx(&self) -> f64 {
         self.width / self.nx as f64
