@@ -277,3 +277,76 @@ fn an_initial_traction_above_the_initial_strength_is_invalid_input() {
     );
     assert_refused(&output, "f_n = 25.358983848");
 }
+
+#[test]
+fn a_paced_replay_stopped_by_a_signal_finishes_its_recording() {
+    let dir = scratch("replay-signal");
+    let log = dir.join("log.mcap");
+    assert_eq!(code(&spring(&dir, &["--set", "time.t_end=200", "--mcap", log.to_str().unwrap()])), 0);
+    let replayed = dir.join("replayed.rrd");
+    for (signal, exit) in [("INT", 130), ("TERM", 143)] {
+        // 200 simulated seconds at 10 per second: 20 s of pacing, stopped after about one.
+        let child = binary()
+            .arg("replay")
+            .arg(&log)
+            .arg("--rrd")
+            .arg(&replayed)
+            .args(["--speed", "10"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(1000));
+        let sent = Command::new("kill").arg(format!("-{signal}")).arg(child.id().to_string()).status().unwrap();
+        assert!(sent.success());
+        let start = Instant::now();
+        let output = child.wait_with_output().unwrap();
+        assert!(start.elapsed() < Duration::from_secs(10), "SIG{signal}: took {:?} to stop", start.elapsed());
+        assert_eq!(code(&output), exit, "SIG{signal}: {}", stderr(&output));
+        assert!(stderr(&output).contains(&format!("interrupted by SIG{signal}")), "{}", stderr(&output));
+        let check = binary().arg("check").arg(&replayed).output().unwrap();
+        let report = String::from_utf8_lossy(&check.stdout);
+        assert_eq!(code(&check), 0, "SIG{signal}: {report}");
+        assert!(report.contains("run interrupted"), "SIG{signal}: {report}");
+    }
+}
+
+/// Runs `command` and kills it after `limit`; returns its output and whether it ended by itself.
+fn bounded(mut command: Command, limit: Duration) -> (Output, bool) {
+    let mut child = command.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() && start.elapsed() < limit {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let ended = child.try_wait().unwrap().is_some();
+    if !ended {
+        let _ = child.kill();
+    }
+    (child.wait_with_output().unwrap(), ended)
+}
+
+#[test]
+fn a_viewer_endpoint_that_never_answers_stalls_neither_the_run_nor_its_file() {
+    let dir = scratch("silent");
+    // Accepts TCP connections (the kernel completes them) and never reads or answers.
+    let silent = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let url = format!("rerun+http://127.0.0.1:{}/proxy", silent.local_addr().unwrap().port());
+    let mut command = binary();
+    command.arg("run").arg(case("spring_block.toml")).args(["--quiet", "--set", "time.t_end=5", "--connect", &url]);
+    command.arg("--out-dir").arg(&dir);
+    let (output, ended) = bounded(command, Duration::from_secs(60));
+    assert!(ended, "the run hung on a silent viewer endpoint: {}", stderr(&output));
+    assert!([0, 1].contains(&code(&output)), "{}", stderr(&output));
+    let check = binary().arg("check").arg(dir.join("spring_block.rrd")).output().unwrap();
+    assert_eq!(code(&check), 0, "{}", String::from_utf8_lossy(&check.stdout));
+
+    let log = dir.join("log.mcap");
+    assert_eq!(code(&spring(&dir, &["--mcap", log.to_str().unwrap()])), 0);
+    let mut command = binary();
+    command.arg("replay").arg(&log).arg("--rrd").arg(dir.join("replayed.rrd")).args(["--connect", &url]);
+    let (output, ended) = bounded(command, Duration::from_secs(60));
+    assert!(ended, "the replay hung on a silent viewer endpoint: {}", stderr(&output));
+    let check = binary().arg("check").arg(dir.join("replayed.rrd")).output().unwrap();
+    assert_eq!(code(&check), 0, "{}", String::from_utf8_lossy(&check.stdout));
+    drop(silent);
+}

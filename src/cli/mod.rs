@@ -6,6 +6,7 @@ pub mod figures;
 pub mod outputs;
 pub mod replay;
 pub mod run;
+pub mod signals;
 
 use std::process::ExitCode;
 

@@ -15,8 +15,26 @@ pub struct Named<'a> {
     pub path: &'a Path,
 }
 
-/// Locks held on a command's outputs until it ends.
-pub struct Locks(#[allow(dead_code)] Vec<File>);
+/// Locks held on a command's outputs until it ends. A file that the claim created and that is
+/// still empty when the locks go (the command stopped before writing it) is removed again.
+pub struct Locks(Vec<Held>);
+
+struct Held {
+    /// Kept open: the lock lasts as long as the file handle.
+    file: File,
+    path: PathBuf,
+    created: bool,
+}
+
+impl Drop for Locks {
+    fn drop(&mut self) {
+        for held in &self.0 {
+            if held.created && held.file.metadata().is_ok_and(|m| m.len() == 0) {
+                let _ = std::fs::remove_file(&held.path);
+            }
+        }
+    }
+}
 
 /// Checks the outputs against each other and against the inputs, checks their folders, and
 /// locks them. The error names both paths or the folder, and what to do.
@@ -80,11 +98,12 @@ fn check_folder(output: &Named<'_>) -> Result<(), String> {
 }
 
 /// An exclusive lock on the output file (created empty if missing, never truncated here).
-fn lock(output: &Named<'_>) -> Result<File, String> {
+fn lock(output: &Named<'_>) -> Result<Held, String> {
     let describe = |e: std::io::Error| format!("{} {}: {e}", output.role, output.path.display());
+    let created = !output.path.exists();
     let file = OpenOptions::new().create(true).truncate(false).write(true).open(output.path).map_err(describe)?;
     match file.try_lock() {
-        Ok(()) => Ok(file),
+        Ok(()) => Ok(Held { file, path: output.path.to_path_buf(), created }),
         Err(TryLockError::WouldBlock) => Err(format!(
             "{} {} is being written by another slipfront command: wait for it, or write elsewhere",
             output.role,

@@ -8,6 +8,7 @@ use clap::Args;
 
 use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, fail, print};
 use crate::cli::outputs::{self, Named};
+use crate::cli::signals::Stop;
 use crate::inspect;
 use crate::sink::rerun::{Viewer, open_stream};
 use crate::study::replay;
@@ -72,11 +73,18 @@ pub fn command(args: ReplayArgs) -> ExitCode {
         Ok(None) => return fail(EXIT_INVALID, "nothing to replay into"),
         Err(e) => return fail(EXIT_INVALID, e),
     };
-    if let Err(e) = replay::replay(&log, stream, args.speed) {
-        return fail(EXIT_FAILED, e);
+    let stop = Stop::catch();
+    let replayed = match replay::replay(&log, stream, args.speed, Some(&stop.flag)) {
+        Ok(replayed) => replayed,
+        Err(e) => return fail(EXIT_FAILED, e),
+    };
+    let into = rrd.map_or_else(|| "the viewer".to_string(), |p| p.display().to_string());
+    if stop.requested() {
+        let (code, name) = stop.exit();
+        let of = log.frames.len();
+        return fail(code, format!("interrupted by {name} after {replayed} of {of} recorded steps; {into} finished"));
     }
     let last = log.frames.last().map_or(0.0, |f| f.time);
-    let into = rrd.map_or_else(|| "the viewer".to_string(), |p| p.display().to_string());
     match &log.problem {
         Some(problem) => fail(
             EXIT_FAILED,

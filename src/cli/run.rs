@@ -3,15 +3,13 @@
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use clap::Args;
-use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM, SIGUSR1, SIGUSR2};
 
 use crate::case;
-use crate::cli::common::{EXIT_FAILED, EXIT_INTERRUPTED, EXIT_INVALID, ViewerArgs, fail, print};
+use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, fail, print};
 use crate::cli::outputs::{self, Named};
+use crate::cli::signals::Stop;
 use crate::frame::SceneKind;
 use crate::record::schema::RecordingPlan;
 use crate::run::{LoopOptions, Outcome, run};
@@ -79,15 +77,15 @@ pub fn command(args: RunArgs) -> ExitCode {
         Ok(sinks) => sinks,
         Err(exit) => return exit,
     };
-    let (interrupt, signal) = catch_signals();
+    let stop = Stop::catch();
     let outcome = run(
         scene.as_mut(),
         &case.time,
         &mut sinks,
-        LoopOptions { progress: !args.quiet, interrupt: Some(&interrupt), ..LoopOptions::for_case(&case) },
+        LoopOptions { progress: !args.quiet, interrupt: Some(&stop.flag), ..LoopOptions::for_case(&case) },
     );
     let written = outputs.written(&args, block);
-    report(&args, &case, outcome, &written, signal.load(Ordering::SeqCst), scene.time())
+    report(&args, &case, outcome, &written, &stop, scene.time())
 }
 
 /// Where a run's outputs go.
@@ -158,28 +156,8 @@ impl Outputs {
     }
 }
 
-/// The signals that stop a run cleanly: Ctrl-C, a batch system's or a user's kill, a closed
-/// terminal, and the user signals schedulers send ahead of a time limit.
-const STOPPING: [(i32, &str); 5] =
-    [(SIGINT, "SIGINT"), (SIGTERM, "SIGTERM"), (SIGHUP, "SIGHUP"), (SIGUSR1, "SIGUSR1"), (SIGUSR2, "SIGUSR2")];
-
-/// The [`STOPPING`] signals stop the loop after the current step; the sinks then finish their
-/// files, and the exit code is 128 + the signal's number, as a shell expects. A second
-/// signal while finishing ends the process at once. Returns the stop flag and the signal.
-fn catch_signals() -> (Arc<AtomicBool>, Arc<AtomicUsize>) {
-    let interrupt = Arc::new(AtomicBool::new(false));
-    let signal = Arc::new(AtomicUsize::new(0));
-    for (number, _) in STOPPING {
-        // Registering can only fail for signals that cannot be caught; these two can.
-        let _ = signal_hook::flag::register_conditional_shutdown(number, 128 + number, interrupt.clone());
-        let _ = signal_hook::flag::register(number, interrupt.clone());
-        let _ = signal_hook::flag::register_usize(number, signal.clone(), number as usize);
-    }
-    (interrupt, signal)
-}
-
 /// The summary line of a completed run, or the error of one that was not, and its exit code.
-fn report(args: &RunArgs, case: &case::Case, outcome: Outcome, written: &str, signal: usize, time: f64) -> ExitCode {
+fn report(args: &RunArgs, case: &case::Case, outcome: Outcome, written: &str, stop: &Stop, time: f64) -> ExitCode {
     match outcome {
         Outcome::Completed { steps, rejected, wall, catalog, .. } => {
             if !args.quiet {
@@ -204,10 +182,7 @@ fn report(args: &RunArgs, case: &case::Case, outcome: Outcome, written: &str, si
             ExitCode::SUCCESS
         }
         Outcome::Interrupted { steps, .. } => {
-            let (code, name) = match STOPPING.iter().find(|(n, _)| *n as usize == signal) {
-                Some(&(n, name)) if n != SIGINT => (128 + n as u8, name),
-                _ => (EXIT_INTERRUPTED, "SIGINT"),
-            };
+            let (code, name) = stop.exit();
             fail(code, format!("interrupted by {name} after {steps} steps (t = {time} s); outputs finished: {written}"))
         }
         Outcome::Failed { error, .. } => {

@@ -7,6 +7,7 @@ pub mod catalog;
 pub mod geometry;
 pub mod mcap;
 pub mod rerun;
+pub mod viewer;
 
 use std::fmt;
 

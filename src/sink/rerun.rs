@@ -15,6 +15,7 @@ use crate::record::colormap::{POSITION, SLIP_RATE, sample};
 use crate::record::schema::{self, Decimator, RecordingPlan, RunEnding, RunInfo, Source, selection, series_plan};
 use crate::sink::blueprint::default_blueprint;
 use crate::sink::geometry::{GeometryBuffer, SPACETIME_ROWS, spacetime_width};
+use crate::sink::viewer::DetachedViewer;
 use crate::sink::{Sink, SinkError};
 
 /// Rows buffered per series before they are sent as one chunk.
@@ -234,7 +235,7 @@ impl Sink for RerunSink {
         // The columns go to the file directly (`send_columns` bypasses the batcher): without a
         // flush here, a fast run's first columns can reach the file before the run description,
         // and a file cut early (an interrupted run, a full disk) would lack it.
-        rec.flush_blocking().map_err(|e| SinkError(format!("cannot flush the recording: {e}")))?;
+        flush(rec)?;
         self.values = vec![Vec::with_capacity(ROWS_PER_CHUNK); plan.len()];
         self.series = plan.into_iter().map(|s| (s.path, s.source)).collect();
         self.spacetime = vec![0.0; SPACETIME_ROWS * layout.segments.len()];
@@ -274,10 +275,24 @@ impl Sink for RerunSink {
         }
         // Dropping the last handle flushes the batcher and writes the file's footer.
         let rec = self.rec.take().expect("checked above");
-        let flushed = rec.flush_blocking().map_err(|e| SinkError(format!("cannot flush the recording: {e}")));
+        let flushed = flush(&rec);
         drop(rec);
         result.and(flushed)
     }
+}
+
+/// How long a flush may wait for the file and a connected viewer to take what was logged: a
+/// viewer that accepted the connection but stopped reading must not stall the run for ever.
+const FLUSH_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(20);
+
+/// Flushes `rec` within [`FLUSH_TIMEOUT`].
+fn flush(rec: &RecordingStream) -> Result<(), SinkError> {
+    rec.flush_with_timeout(FLUSH_TIMEOUT).map_err(|e| {
+        SinkError(format!(
+            "cannot flush the recording within {} s ({e}): is a connected viewer still reading?",
+            FLUSH_TIMEOUT.as_secs()
+        ))
+    })
 }
 
 fn rerun_error(e: impl std::fmt::Display) -> SinkError {
@@ -302,7 +317,7 @@ pub fn open_stream(
     viewer: &Viewer,
     name: &str,
 ) -> Result<Option<RecordingStream>, String> {
-    use rerun::sink::{FileSink, GrpcSink};
+    use rerun::sink::{FileSink, GrpcSink, LogSink};
     let uri: Option<String> = match viewer {
         Viewer::None => None,
         Viewer::Spawn => {
@@ -330,7 +345,7 @@ pub fn open_stream(
             if !reachable {
                 return Err(format!("no Rerun viewer is listening at {url} (start one with `rerun`, or use --spawn)"));
             }
-            Some(GrpcSink::new(parsed))
+            Some(DetachedViewer::connect(GrpcSink::new(parsed), url)?)
         }
     };
     let builder = rerun::RecordingStreamBuilder::new(schema::APP_ID).recording_name(name).enabled(true);
@@ -339,9 +354,9 @@ pub fn open_stream(
         (Some(path), None) => builder.save(path),
         (Some(path), Some(grpc)) => {
             let file = FileSink::new(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-            builder.set_sinks((file, grpc))
+            builder.set_sinks(vec![Box::new(file) as Box<dyn LogSink>, Box::new(grpc)])
         }
-        (None, Some(grpc)) => builder.set_sinks((grpc,)),
+        (None, Some(grpc)) => builder.set_sinks(vec![Box::new(grpc) as Box<dyn LogSink>]),
     };
     stream.map(Some).map_err(|e| format!("cannot open the recording: {e}"))
 }
