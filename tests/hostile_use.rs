@@ -350,3 +350,32 @@ fn a_viewer_endpoint_that_never_answers_stalls_neither_the_run_nor_its_file() {
     assert_eq!(code(&check), 0, "{}", String::from_utf8_lossy(&check.stdout));
     drop(silent);
 }
+
+#[test]
+fn damage_that_a_decoder_panics_on_is_reported_as_damage() {
+    // The kept regressions of the fuzz targets that once panicked inside the Arrow or MCAP
+    // readers: each must end as a damaged-file report, without a panic message.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions");
+    let mut seen = 0;
+    for target in ["rrd_read", "mcap_read"] {
+        for entry in std::fs::read_dir(root.join(target)).unwrap() {
+            let path = entry.unwrap().path();
+            if !path.file_name().unwrap().to_string_lossy().starts_with("crash-") {
+                continue;
+            }
+            seen += 1;
+            for command in ["check", "figures"] {
+                let mut run = binary();
+                run.arg(command).arg(&path);
+                if command == "figures" {
+                    run.arg("--out").arg(scratch("damaged-figures"));
+                }
+                let output = run.output().unwrap();
+                let all = format!("{}{}", String::from_utf8_lossy(&output.stdout), stderr(&output));
+                assert!([1, 2].contains(&code(&output)), "{command} {}: exit {}: {all}", path.display(), code(&output));
+                assert!(!all.contains("panicked"), "{command} {}: {all}", path.display());
+            }
+        }
+    }
+    assert!(seen >= 3, "the crash regressions are missing ({seen} found)");
+}

@@ -4,6 +4,7 @@ pub mod check;
 pub mod framing;
 pub mod mcap;
 pub mod rrd;
+pub mod unwind;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;

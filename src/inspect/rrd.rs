@@ -9,6 +9,7 @@ use rerun::log::{Chunk, LogMsg};
 use rerun::{ComponentIdentifier, TimelineName};
 
 use crate::inspect::framing::{self, Plausible};
+use crate::inspect::unwind::quietly;
 use crate::inspect::{ReadError, Recording, View};
 use crate::record::schema;
 
@@ -41,7 +42,7 @@ fn decode(reader: impl std::io::BufRead, name: &str, plausible: Plausible) -> Re
         if panicked {
             return None;
         }
-        match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| decoder.next())) {
+        match quietly(|| decoder.next()) {
             Ok(next) => next.map(|m| m.map_err(|e| e.to_string())),
             Err(_) => {
                 panicked = true;
