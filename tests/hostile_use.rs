@@ -379,3 +379,28 @@ fn damage_that_a_decoder_panics_on_is_reported_as_damage() {
     }
     assert!(seen >= 3, "the crash regressions are missing ({seen} found)");
 }
+
+#[test]
+fn an_empty_recording_is_unreadable_and_figures_say_when_a_file_is_damaged() {
+    let dir = scratch("empty");
+    let empty = dir.join("empty.rrd");
+    File::create(&empty).unwrap();
+    for command in ["check", "figures"] {
+        let mut run = binary();
+        run.arg(command).arg(&empty);
+        if command == "figures" {
+            run.arg("--out").arg(&dir);
+        }
+        let output = run.output().unwrap();
+        assert_eq!(code(&output), 2, "{command}: {}", stderr(&output));
+        assert!(stderr(&output).contains("is empty: no recording to read"), "{command}: {}", stderr(&output));
+    }
+    // A recording cut off inside its last chunk: figures are drawn, and the damage is named.
+    let rrd = recording(&dir);
+    let bytes = std::fs::read(&rrd).unwrap();
+    let cut = dir.join("cut.rrd");
+    std::fs::write(&cut, &bytes[..bytes.len() - 5000]).unwrap();
+    let output = binary().arg("figures").arg(&cut).arg("--out").arg(dir.join("figures")).output().unwrap();
+    assert_eq!(code(&output), 1, "{}", stderr(&output));
+    assert!(stderr(&output).contains("is damaged"), "{}", stderr(&output));
+}

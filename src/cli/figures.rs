@@ -27,7 +27,17 @@ pub fn command(args: FiguresArgs) -> ExitCode {
     match figures::write_figures(&recording, &args.out) {
         Ok(paths) => {
             let listing: String = paths.iter().map(|path| format!("{}\n", path.display())).collect();
-            print(&listing).err().unwrap_or(ExitCode::SUCCESS)
+            if let Err(exit) = print(&listing) {
+                return exit;
+            }
+            // Figures drawn from a damaged file show what came before the damage: say so.
+            match &recording.problem {
+                Some(problem) => fail(
+                    EXIT_FAILED,
+                    format!("{} is damaged ({problem}); the figures show what came before", args.recording.display()),
+                ),
+                None => ExitCode::SUCCESS,
+            }
         }
         Err(e) => fail(EXIT_FAILED, e),
     }

@@ -19,12 +19,18 @@ pub fn read(path: &Path) -> Result<Recording, ReadError> {
     let open_error = |e: std::io::Error| ReadError(format!("cannot open {}: {e}", path.display()));
     let mut file = File::open(path).map_err(open_error)?;
     let total = file.metadata().map_err(open_error)?.len();
+    if total == 0 {
+        return Err(ReadError(format!("{} is empty: no recording to read", path.display())));
+    }
     let plausible = framing::rrd(&mut file, total);
     decode(BufReader::new(std::io::Read::take(file, plausible.len)), &path.display().to_string(), plausible)
 }
 
 /// As [`read`], from the bytes of a recording; `name` stands for the file in messages.
 pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Recording, ReadError> {
+    if bytes.is_empty() {
+        return Err(ReadError(format!("{name} is empty: no recording to read")));
+    }
     let plausible = framing::rrd(&mut &*bytes, bytes.len() as u64);
     decode(plausible.prefix(bytes), name, plausible)
 }
