@@ -404,3 +404,32 @@ fn an_empty_recording_is_unreadable_and_figures_say_when_a_file_is_damaged() {
     assert_eq!(code(&output), 1, "{}", stderr(&output));
     assert!(stderr(&output).contains("is damaged"), "{}", stderr(&output));
 }
+
+#[test]
+fn damage_to_a_recordings_footer_fails_check() {
+    let dir = scratch("footer");
+    let rrd = recording(&dir);
+    let bytes = std::fs::read(&rrd).unwrap();
+    let n = bytes.len();
+    // The stream footer's last 32 bytes point at the footer: start and length, little-endian.
+    assert_eq!(&bytes[n - 8..n - 4], b"FOOT", "a finished recording ends with its stream footer");
+    let start = u64::from_le_bytes(bytes[n - 32..n - 24].try_into().unwrap()) as usize;
+    let len = u64::from_le_bytes(bytes[n - 24..n - 16].try_into().unwrap()) as usize;
+    let footer: Vec<usize> = (start..start + len).chain(n - 32..n - 12).collect();
+    let damaged = dir.join("damaged.rrd");
+    for k in 0..24 {
+        let at = footer[k * footer.len() / 24];
+        let mut copy = bytes.clone();
+        copy[at] ^= 0x10;
+        std::fs::write(&damaged, &copy).unwrap();
+        let output = binary().arg("check").arg(&damaged).output().unwrap();
+        let report = String::from_utf8_lossy(&output.stdout);
+        assert_ne!(
+            code(&output),
+            0,
+            "a flip at byte {at} of {n} (footer {start}..{}) passed check: {report}",
+            start + len
+        );
+        assert!(!stderr(&output).contains("panicked"), "{}", stderr(&output));
+    }
+}

@@ -1,10 +1,10 @@
 //! Reads a Rerun recording (`.rrd`) back into a [`Recording`].
 
 use std::fs::File;
-use std::io::BufReader;
+use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::Path;
 
-use rerun::external::re_log_encoding::DecoderApp;
+use rerun::external::re_log_encoding::{DecoderApp, DecoderIterator, RrdManifest};
 use rerun::log::{Chunk, LogMsg};
 use rerun::{ComponentIdentifier, TimelineName};
 
@@ -23,7 +23,41 @@ pub fn read(path: &Path) -> Result<Recording, ReadError> {
         return Err(ReadError(format!("{} is empty: no recording to read", path.display())));
     }
     let plausible = framing::rrd(&mut file, total);
-    decode(BufReader::new(std::io::Read::take(file, plausible.len)), &path.display().to_string(), plausible)
+    let footer = footer_checksum_problem(&mut file, total);
+    file.seek(SeekFrom::Start(0)).map_err(open_error)?;
+    let mut recording =
+        decode(BufReader::new(std::io::Read::take(file, plausible.len)), &path.display().to_string(), plausible)?;
+    if let Some(problem) = footer {
+        recording.problem.get_or_insert(problem);
+    }
+    Ok(recording)
+}
+
+/// The stream footer's checksum against the footer it points to, where the file ends with
+/// one (a recording cut before its footer has none): 32 bytes at the end, the footer's
+/// `start` and `len` (u64) and its `xxh32` (u32, seed 7850921), then `RRF2`, `FOOT` and the
+/// footer count (u32), all little-endian.
+fn footer_checksum_problem(file: &mut File, total: u64) -> Option<String> {
+    const SIZE: u64 = 32;
+    const SEED: u32 = 7_850_921;
+    let mut tail = [0u8; SIZE as usize];
+    file.seek(SeekFrom::Start(total.checked_sub(SIZE)?)).ok()?;
+    file.read_exact(&mut tail).ok()?;
+    if &tail[20..24] != b"RRF2" || &tail[24..28] != b"FOOT" {
+        return None;
+    }
+    let word = |at: usize| u64::from_le_bytes(tail[at..at + 8].try_into().expect("8 bytes"));
+    let (start, len) = (word(0), word(8));
+    let crc = u32::from_le_bytes(tail[16..20].try_into().expect("4 bytes"));
+    let end = start.checked_add(len).filter(|&end| end <= total - SIZE);
+    let Some(end) = end else {
+        return Some(format!("the footer points outside the file (bytes {start} + {len} of {total})"));
+    };
+    let mut payload = vec![0u8; (end - start) as usize];
+    file.seek(SeekFrom::Start(start)).ok()?;
+    file.read_exact(&mut payload).ok()?;
+    (xxhash_rust::xxh32::xxh32(&payload, SEED) != crc)
+        .then(|| "the footer's checksum does not match its bytes".to_string())
 }
 
 /// As [`read`], from the bytes of a recording; `name` stands for the file in messages.
@@ -57,8 +91,29 @@ fn decode(reader: impl std::io::BufRead, name: &str, plausible: Plausible) -> Re
         }
     });
     let mut recording = from_messages(messages);
+    if recording.problem.is_none()
+        && let Some(problem) = footer_problem(&decoder)
+    {
+        recording.problem = Some(problem);
+    }
     plausible.report_into(&mut recording.problem);
     Ok(recording)
+}
+
+/// What is wrong with the footers the decoder read, if anything: each footer's manifest (the
+/// index of every chunk a finished recording ends with) must decode and pass Rerun's own
+/// sanity checks, as `rerun rrd verify` requires. A recording cut before its footer has none.
+fn footer_problem<R: std::io::BufRead>(decoder: &DecoderIterator<LogMsg, R>) -> Option<String> {
+    let manifests = match quietly(|| decoder.rrd_manifests()) {
+        Ok(Ok(manifests)) => manifests,
+        Ok(Err(e)) => return Some(format!("the footer's chunk index is corrupt: {e}")),
+        Err(()) => return Some("the footer's chunk index is corrupt".to_string()),
+    };
+    manifests.iter().find_map(|raw| match quietly(|| RrdManifest::try_new(raw)) {
+        Ok(Ok(_)) => None,
+        Ok(Err(e)) => Some(format!("the footer's chunk index is corrupt: {e}")),
+        Err(()) => Some("the footer's chunk index is corrupt".to_string()),
+    })
 }
 
 /// The components and timelines a recording is read by.
