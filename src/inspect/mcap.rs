@@ -13,7 +13,7 @@ use crate::catalog::events::Catalog;
 use crate::frame::{Frame, SegmentSample};
 use crate::inspect::ReadError;
 use crate::inspect::framing;
-use crate::inspect::unwind::quietly;
+use crate::inspect::unwind::{DecoderPanicked, quietly};
 use crate::record::mcap::{self as format, LogHeader};
 use crate::record::proto;
 use crate::record::schema::RunEnding;
@@ -58,7 +58,7 @@ pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Log, ReadError> {
     // The MCAP parser trusts the sizes in record headers: give it only the prefix whose sizes
     // are plausible. Should it still panic on what it reads, say so rather than abort.
     let plausible = framing::mcap(&mut &*bytes, bytes.len() as u64);
-    let mut log = quietly(|| decode(plausible.prefix(bytes), name)).unwrap_or_else(|()| {
+    let mut log = quietly(|| decode(plausible.prefix(bytes), name)).unwrap_or_else(|DecoderPanicked| {
         Err(ReadError(format!("{name}: the MCAP reader failed on damaged data; nothing was recovered")))
     })?;
     plausible.report_into(&mut log.problem);

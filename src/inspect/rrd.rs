@@ -9,7 +9,7 @@ use rerun::log::{Chunk, LogMsg};
 use rerun::{ComponentIdentifier, TimelineName};
 
 use crate::inspect::framing::{self, Plausible};
-use crate::inspect::unwind::quietly;
+use crate::inspect::unwind::{DecoderPanicked, quietly};
 use crate::inspect::{ReadError, Recording, View};
 use crate::record::schema;
 
@@ -107,12 +107,12 @@ fn footer_problem<R: std::io::BufRead>(decoder: &DecoderIterator<LogMsg, R>) -> 
     let manifests = match quietly(|| decoder.rrd_manifests()) {
         Ok(Ok(manifests)) => manifests,
         Ok(Err(e)) => return Some(format!("the footer's chunk index is corrupt: {e}")),
-        Err(()) => return Some("the footer's chunk index is corrupt".to_string()),
+        Err(DecoderPanicked) => return Some("the footer's chunk index is corrupt".to_string()),
     };
     manifests.iter().find_map(|raw| match quietly(|| RrdManifest::try_new(raw)) {
         Ok(Ok(_)) => None,
         Ok(Err(e)) => Some(format!("the footer's chunk index is corrupt: {e}")),
-        Err(()) => Some("the footer's chunk index is corrupt".to_string()),
+        Err(DecoderPanicked) => Some("the footer's chunk index is corrupt".to_string()),
     })
 }
 

@@ -9,12 +9,16 @@ use std::sync::Mutex;
 /// One quiet section at a time: the panic hook is the process's.
 static QUIET: Mutex<()> = Mutex::new(());
 
+/// A decoder panicked on damaged data.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DecoderPanicked;
+
 /// Runs `decode`; a panic inside it becomes `Err` without a message on stderr.
-pub fn quietly<T>(decode: impl FnOnce() -> T) -> Result<T, ()> {
+pub fn quietly<T>(decode: impl FnOnce() -> T) -> Result<T, DecoderPanicked> {
     let _one = QUIET.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
     let hook = take_hook();
     set_hook(Box::new(|_| {}));
-    let result = catch_unwind(AssertUnwindSafe(decode)).map_err(|_| ());
+    let result = catch_unwind(AssertUnwindSafe(decode)).map_err(|_| DecoderPanicked);
     set_hook(hook);
     result
 }
