@@ -2,15 +2,10 @@
 //! exit code 2, before anything runs.
 
 use std::path::PathBuf;
-use std::process::Command;
 
-fn binary() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_slipfront"))
-}
+mod common;
 
-fn case(name: &str) -> String {
-    format!("{}/cases/{name}", env!("CARGO_MANIFEST_DIR"))
-}
+use common::{binary, case_path as case};
 
 fn scratch_dir(tag: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("slipfront-cli-{tag}-{}", std::process::id()));

@@ -8,6 +8,16 @@ use slipfront::run::{LoopOptions, Outcome, run};
 use slipfront::scene::block::BlockScene;
 use slipfront::scene::{self, Scene};
 
+/// The release binary under test.
+pub fn binary() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_slipfront"))
+}
+
+/// The path of the shipped case file `cases/<file>`.
+pub fn case_path(file: &str) -> String {
+    format!("{}/cases/{file}", env!("CARGO_MANIFEST_DIR"))
+}
+
 /// The shipped case `cases/<name>.toml` with `--set` overrides.
 pub fn load(name: &str, overrides: &[&str]) -> Case {
     let path = format!("{}/cases/{name}.toml", env!("CARGO_MANIFEST_DIR"));
