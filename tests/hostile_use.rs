@@ -201,7 +201,9 @@ fn a_bound_derived_from_two_inputs_accepts_its_own_exact_value() {
         let output = spring(&dir, &[&decimals[..], &[structure0]].concat());
         match refused {
             false => assert_eq!(code(&output), 0, "{structure0}: {}", stderr(&output)),
-            true => assert_refused(&output, "friction.structure0 = 3.0001 must lie in [1, friction.mu_s/friction.mu_k]"),
+            true => {
+                assert_refused(&output, "friction.structure0 = 3.0001 must lie in [1, friction.mu_s/friction.mu_k]")
+            }
         }
     }
 }
