@@ -3,7 +3,7 @@
 //!
 //! Wilson's step (`c₀ = 6/τ²`, [`crate::dynamics::wilson`]) and the SDIRK stages (`c₀ = 1/(hγ)²`,
 //! [`crate::dynamics::rate_form::sdirk4`]) both solve with it. `K_c = -Σ w Ñᵀ (∂f_t/∂ū) Ñ` is eq. (14)'s contact
-//! tangent. The explicit integrators never need it, so [`crate::dynamics::Dynamics`] builds it at its
+//! tangent. The explicit integrators never need it, so [`crate::dynamics::System`] builds it at its
 //! first use: on a fine mesh the pattern is as large as `K`'s, and its symbolic analysis takes
 //! as long as the rest of the set-up.
 

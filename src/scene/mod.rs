@@ -1,5 +1,5 @@
-//! Scenes assemble a case into a model, advance it, and describe each step as a [`Frame`] for
-//! the sinks. A scene computes for a frame only what the sinks asked for ([`Needs`]).
+//! Scenes assemble a case into a model, advance it, and describe each step as a [`crate::frame::Frame`] for
+//! the sinks. A scene computes for a frame only what the sinks asked for ([`crate::frame::Needs`]).
 
 pub mod block;
 pub mod dynamic;
