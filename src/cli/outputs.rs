@@ -91,10 +91,15 @@ fn check_folder(output: &Named<'_>) -> Result<(), String> {
             folder.display()
         ));
     }
-    let probe = folder.join(format!(".slipfront-write-test-{}", std::process::id()));
-    std::fs::write(&probe, b"")
-        .and_then(|()| std::fs::remove_file(&probe))
+    check_writable(folder)
         .map_err(|e| format!("{} {}: cannot write in {}: {e}", output.role, output.path.display(), folder.display()))
+}
+
+/// A file can be created (and removed) in `dir`.
+pub fn check_writable(dir: &Path) -> std::io::Result<()> {
+    let probe = dir.join(format!(".slipfront-write-test-{}", std::process::id()));
+    std::fs::write(&probe, b"")?;
+    std::fs::remove_file(&probe)
 }
 
 /// An exclusive lock on the output file (created empty if missing, never truncated here).

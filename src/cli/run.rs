@@ -8,7 +8,7 @@ use clap::Args;
 
 use crate::case;
 use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, fail, print};
-use crate::cli::outputs::{self, Named};
+use crate::cli::outputs::{self, Named, check_writable};
 use crate::cli::signals::Stop;
 use crate::frame::SceneKind;
 use crate::record::schema::RecordingPlan;
@@ -129,30 +129,27 @@ impl Outputs {
         Ok(sinks)
     }
 
+    /// Every file the run writes, with the option that names it: the recording, the MCAP
+    /// log, the event catalog and, for a block, the rupture catalog beside it.
+    fn named<'a>(&'a self, args: &'a RunArgs, block: bool) -> Vec<Named<'a>> {
+        let mut named: Vec<Named<'a>> = self.rrd.iter().map(|path| Named { role: "--rrd", path }).collect();
+        named.extend(args.mcap.iter().map(|path| Named { role: "--mcap", path }));
+        named.push(Named { role: "--events", path: &self.events });
+        if block {
+            named.push(Named { role: "the rupture catalog", path: &self.ruptures });
+        }
+        named
+    }
+
     /// Refuses outputs that collide with each other or with the case file, or whose folder
     /// cannot be written, and locks them for the run ([`outputs::claim`]).
     fn claim(&self, args: &RunArgs, block: bool) -> Result<outputs::Locks, String> {
-        let mut written = vec![Named { role: "--events", path: &self.events }];
-        if block {
-            written.push(Named { role: "the rupture catalog", path: &self.ruptures });
-        }
-        if let Some(rrd) = &self.rrd {
-            written.push(Named { role: "--rrd", path: rrd });
-        }
-        if let Some(mcap) = &args.mcap {
-            written.push(Named { role: "--mcap", path: mcap });
-        }
-        outputs::claim(&[Named { role: "case file", path: &args.case }], &written)
+        outputs::claim(&[Named { role: "case file", path: &args.case }], &self.named(args, block))
     }
 
     /// The files written, for the summary.
     fn written(&self, args: &RunArgs, block: bool) -> String {
-        let mut outputs: Vec<String> = self.rrd.iter().chain(&args.mcap).map(|p| p.display().to_string()).collect();
-        outputs.push(self.events.display().to_string());
-        if block {
-            outputs.push(self.ruptures.display().to_string());
-        }
-        outputs.join(", ")
+        self.named(args, block).iter().map(|n| n.path.display().to_string()).collect::<Vec<_>>().join(", ")
     }
 }
 
@@ -233,10 +230,4 @@ fn ruptures_path_for(events: &Path) -> PathBuf {
     let name = events.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let stem = name.strip_suffix(".events.csv").or_else(|| name.strip_suffix(".csv")).unwrap_or(&name);
     events.with_file_name(format!("{stem}.ruptures.csv"))
-}
-
-fn check_writable(dir: &Path) -> std::io::Result<()> {
-    let probe = dir.join(format!(".slipfront-write-test-{}", std::process::id()));
-    std::fs::write(&probe, b"")?;
-    std::fs::remove_file(&probe)
 }

@@ -6,6 +6,7 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
+use crate::cli::common::EXIT_INTERRUPTED;
 use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM, SIGUSR1, SIGUSR2};
 
 /// The stopping signals and their names.
@@ -43,7 +44,7 @@ impl Stop {
         let signal = self.signal.load(Ordering::SeqCst);
         match STOPPING.iter().find(|(n, _)| *n as usize == signal) {
             Some(&(n, name)) => (128 + n as u8, name),
-            None => (128 + SIGINT as u8, "SIGINT"),
+            None => (EXIT_INTERRUPTED, "SIGINT"),
         }
     }
 }

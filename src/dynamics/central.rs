@@ -294,10 +294,6 @@ impl Integrator for CentralDifference {
     fn advance(&mut self, system: &mut System, limit: f64) -> Result<f64, AdaptiveError> {
         self.step(system, limit).map(|()| limit).map_err(AdaptiveError::Step)
     }
-
-    fn stable_step(&self) -> Option<f64> {
-        Some(CentralDifference::stable_step(self))
-    }
 }
 
 /// Degrees of freedom from which a step's loops are shared among threads (`rayon`): below

@@ -17,11 +17,6 @@ pub trait Integrator: Send {
     fn statistics(&self) -> Statistics {
         Statistics::default()
     }
-
-    /// The largest sub-step an explicit method takes (s); `None` for the implicit ones.
-    fn stable_step(&self) -> Option<f64> {
-        None
-    }
 }
 
 /// What an integrator has counted over a run.

@@ -20,7 +20,7 @@ pub struct System {
     pub settings: Settings,
     pub state: State,
     /// Each contact point's tangential traction in the initial equilibrium (Pa).
-    pub(crate) initial_traction: Vec<f64>,
+    initial_traction: Vec<f64>,
     /// `f_c(0)`: the contact forces of the initial equilibrium.
     pub(crate) initial_contact_force: Vec<f64>,
     /// Newton's operator `c₀ M + K + K_c`, built at its first use (Tsitouras' pair and

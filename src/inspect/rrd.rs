@@ -25,19 +25,14 @@ pub fn read(path: &Path) -> Result<Recording, ReadError> {
     let plausible = framing::rrd(&mut file, total);
     let footer = footer_checksum_problem(&mut file, total);
     file.seek(SeekFrom::Start(0)).map_err(open_error)?;
-    let mut recording =
-        decode(BufReader::new(std::io::Read::take(file, plausible.len)), &path.display().to_string(), plausible)?;
-    if let Some(problem) = footer {
-        recording.problem.get_or_insert(problem);
-    }
-    Ok(recording)
+    decode(BufReader::new(std::io::Read::take(file, plausible.len)), &path.display().to_string(), plausible, footer)
 }
 
 /// The stream footer's checksum against the footer it points to, where the file ends with
 /// one (a recording cut before its footer has none): 32 bytes at the end, the footer's
 /// `start` and `len` (u64) and its `xxh32` (u32, seed 7850921), then `RRF2`, `FOOT` and the
 /// footer count (u32), all little-endian.
-fn footer_checksum_problem(file: &mut File, total: u64) -> Option<String> {
+fn footer_checksum_problem(file: &mut (impl Read + Seek), total: u64) -> Option<String> {
     const SIZE: u64 = 32;
     const SEED: u32 = 7_850_921;
     let mut tail = [0u8; SIZE as usize];
@@ -66,12 +61,19 @@ pub fn from_bytes(bytes: &[u8], name: &str) -> Result<Recording, ReadError> {
         return Err(ReadError(format!("{name} is empty: no recording to read")));
     }
     let plausible = framing::rrd(&mut &*bytes, bytes.len() as u64);
-    decode(plausible.prefix(bytes), name, plausible)
+    let footer = footer_checksum_problem(&mut std::io::Cursor::new(bytes), bytes.len() as u64);
+    decode(plausible.prefix(bytes), name, plausible, footer)
 }
 
-/// Decodes the prefix [`framing::rrd`] found plausible; a shortened input is reported as the
-/// recording's problem.
-fn decode(reader: impl std::io::BufRead, name: &str, plausible: Plausible) -> Result<Recording, ReadError> {
+/// Decodes the prefix [`framing::rrd`] found plausible; a shortened input, or a `footer`
+/// checksum that does not match ([`footer_checksum_problem`]), is reported as the recording's
+/// problem.
+fn decode(
+    reader: impl std::io::BufRead,
+    name: &str,
+    plausible: Plausible,
+    footer: Option<String>,
+) -> Result<Recording, ReadError> {
     let mut decoder =
         DecoderApp::decode_eager(reader).map_err(|e| ReadError(format!("{name} is not a Rerun recording: {e}")))?;
     // The Arrow IPC reader under the decoder can panic on damaged bytes (arrow-buffer 58 slices
@@ -91,10 +93,8 @@ fn decode(reader: impl std::io::BufRead, name: &str, plausible: Plausible) -> Re
         }
     });
     let mut recording = from_messages(messages);
-    if recording.problem.is_none()
-        && let Some(problem) = footer_problem(&decoder)
-    {
-        recording.problem = Some(problem);
+    if recording.problem.is_none() {
+        recording.problem = footer.or_else(|| footer_problem(&decoder));
     }
     plausible.report_into(&mut recording.problem);
     Ok(recording)

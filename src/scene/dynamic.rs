@@ -39,16 +39,6 @@ impl<S: Shape> DynamicScene<S> {
     pub fn system_mut(&mut self) -> &mut System {
         &mut self.system
     }
-
-    /// The integrator, for tests that inspect it.
-    pub fn integrator(&self) -> &dyn Integrator {
-        self.integrator.as_ref()
-    }
-
-    /// The scene's shape.
-    pub fn shape(&self) -> &S {
-        &self.shape
-    }
 }
 
 impl<S: Shape> Scene for DynamicScene<S> {
