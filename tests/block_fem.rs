@@ -8,7 +8,9 @@ use slipfront::scene::block::BlockScene;
 
 fn paper_case(overrides: &[&str]) -> Case {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/cases/paper_triangular.toml")).unwrap();
-    let owned: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    // Wilson's method: the tests below are of its Newton iteration and linear solvers.
+    let wilson = std::iter::once("time.integrator=wilson");
+    let owned: Vec<String> = wilson.chain(overrides.iter().copied()).map(|s| s.to_string()).collect();
     case::from_str(&text, &owned).unwrap()
 }
 

@@ -77,11 +77,32 @@ fn time_rules() {
     );
     expect_invalid(
         &c,
-        &["time.tolerance=0"],
+        &["time.integrator=wilson", "time.tolerance=0"],
         "time.tolerance = 0 must lie in (0, 0.1] (a relative local error per second, 1/s)",
     );
     expect_invalid(&c, &["time.tolerance=nan"], "time.tolerance = NaN must be a finite number");
-    expect_invalid(&c, &["time.dt_max=1"], "time.dt_max = 1 only applies to adaptive stepping: set time.tolerance too");
+    expect_invalid(
+        &c,
+        &["time.integrator=wilson", "time.dt_max=1"],
+        "time.dt_max = 1 only applies to adaptive stepping: set time.tolerance too",
+    );
+    expect_invalid(
+        &c,
+        &["time.accuracy=1e-6", "time.tolerance=1e-8"],
+        "time.accuracy = 0.000001 sets the tolerance itself: give time.accuracy or time.tolerance, not both",
+    );
+    expect_invalid(
+        &c,
+        &["time.accuracy=0.5"],
+        "time.accuracy = 0.5 must lie in [1e-9, 1e-2] (a relative error of slip-onset times)",
+    );
+    expect_invalid(&c, &["time.accuracy=nan"], "time.accuracy = NaN must be a finite number");
+    expect_invalid(
+        &c,
+        &["time.integrator=wilson", "time.accuracy=1e-9", "time.t_end=1e6"],
+        "time.accuracy = 1e-9 asks wilson for steps of 0.000025 s: 4.000e10 steps for t_end = 1000000 s, more than \
+         the 1e9 allowed",
+    );
     expect_invalid(
         &c,
         &["time.tolerance=1e-6", "time.dt_max=5000"],
@@ -95,12 +116,13 @@ fn time_rules() {
     expect_invalid(
         &c,
         &["time.integrator=tsit5", "time.tolerance=0.5"],
-        "time.tolerance = 0.5 must lie in (0, 0.1] (a relative local error per step of tsit5)",
+        "time.tolerance = 0.5 must lie in [1e-13, 0.1] (a relative local error per step of tsit5; below that, \
+         rounding in the time itself can exceed it at a slip's onset)",
     );
     expect_invalid(
         &c,
         &["time.integrator=rk4"],
-        "time.integrator: unknown variant `rk4`, expected one of `wilson`, `tsit5`, `sdirk4`, `central`",
+        "time.integrator: unknown variant `rk4`, expected one of `auto`, `wilson`, `tsit5`, `sdirk4`, `central`",
     );
     expect_invalid(
         &c,

@@ -5,6 +5,13 @@
 mod common;
 
 use common::load;
+
+/// The shipped case `name` stepped by Wilson's θ method (the paper's), with `overrides` after it.
+fn wilson(name: &str, overrides: &[&str]) -> Case {
+    let mut all = vec!["time.integrator=wilson"];
+    all.extend_from_slice(overrides);
+    load(name, &all)
+}
 use slipfront::case::{Case, SceneSpec};
 use slipfront::catalog::events::{EventDetector, Rupture, SlipEvent, ruptures};
 use slipfront::catalog::observations::{Observations, Verdict, median};
@@ -74,7 +81,7 @@ fn the_paper_case_shows_the_four_observations() {
     // initial 1/R* differ by 1e-9: the median member for counts, the pooled mean for 1/R*, the
     // pooled fraction for ruptures. The criteria are those of `Verdict`, fixed on one run before
     // the chaos was known; the member-by-member verdicts are printed alongside.
-    let case = load("paper_triangular", &[]);
+    let case = wilson("paper_triangular", &[]);
     let members = run_ensemble(&case, MEMBERS, EPSILON, available_threads());
     let observed: Vec<Observations> = members
         .iter()
@@ -167,8 +174,8 @@ fn the_paper_case_shows_the_four_observations() {
 #[test]
 fn slip_frequency_falls_and_slip_size_grows_with_normal_stress() {
     // 4. The uniform low and high cases (the triangle's end values) and the paper's triangle.
-    let low = run(&load("uniform_low", &[]), 10.0);
-    let high = run(&load("uniform_high", &[]), 10.0);
+    let low = run(&wilson("uniform_low", &[]), 10.0);
+    let high = run(&wilson("uniform_high", &[]), 10.0);
     let size = |r: &Run| r.ruptures.iter().map(|r| r.max_slip).fold(0.0, f64::max);
     let drop = |r: &Run| r.ruptures.iter().map(|r| r.friction_force_drop).fold(0.0, f64::max);
     println!(
@@ -209,7 +216,7 @@ fn the_paper_case_converges_as_dt_halves() {
     let dts = [0.2, 0.1, 0.05, 0.025];
     let histories: Vec<Vec<(f64, f64)>> = dts
         .iter()
-        .map(|dt| run(&load("paper_triangular", &["time.t_end=200", &format!("time.dt={dt}")]), 1.0).force)
+        .map(|dt| run(&wilson("paper_triangular", &["time.t_end=200", &format!("time.dt={dt}")]), 1.0).force)
         .collect();
     let errors: Vec<f64> = histories.windows(2).map(|w| max_difference(&w[0], &w[1])).collect();
     let orders: Vec<f64> = errors.windows(2).map(|e| (e[0] / e[1]).log2()).collect();
@@ -221,7 +228,7 @@ fn the_paper_case_converges_as_dt_halves() {
     // Onset of the first slip (at the left end, after 400 s).
     let onsets: Vec<f64> = [0.02, 0.01, 0.005]
         .iter()
-        .map(|dt| run(&load("paper_triangular", &["time.t_end=440", &format!("time.dt={dt}")]), 10.0).events[0].onset)
+        .map(|dt| run(&wilson("paper_triangular", &["time.t_end=440", &format!("time.dt={dt}")]), 10.0).events[0].onset)
         .collect();
     let order = ((onsets[0] - onsets[1]) / (onsets[1] - onsets[2])).abs().log2();
     println!("first onset at dt = 0.02, 0.01, 0.005 s: {onsets:?} s, observed order {order:.2}");
@@ -234,7 +241,7 @@ fn energy_is_balanced_and_the_integrators_share_shrinks_with_dt() {
     // Through the first slips (420-570 s).
     let mut shares = Vec::new();
     for dt in [0.02, 0.01, 0.005] {
-        let run = run(&load("paper_triangular", &["time.t_end=600", &format!("time.dt={dt}")]), 100.0);
+        let run = run(&wilson("paper_triangular", &["time.t_end=600", &format!("time.dt={dt}")]), 100.0);
         let e = run.energy;
         let share = e.numerical() / e.work_base;
         println!(
@@ -264,7 +271,7 @@ fn tsit5_finds_the_first_slips_within_the_error_of_converging_wilson_steps() {
     let onsets = |overrides: &[&str]| -> Vec<(usize, f64)> {
         let mut all = vec!["time.t_end=440"];
         all.extend_from_slice(overrides);
-        let (catalog, _) = slipfront::study::ensemble::catalog(&load("paper_triangular", &all)).unwrap();
+        let (catalog, _) = slipfront::study::ensemble::catalog(&wilson("paper_triangular", &all)).unwrap();
         catalog.events.iter().map(|e| (e.segment, e.onset)).collect()
     };
     let tsit5 = onsets(&["time.integrator=tsit5", "time.tolerance=1e-10"]);

@@ -86,7 +86,7 @@ fn the_schema_is_pinned() {
         assert!(block.entities.contains(entity), "block recording lacks {entity}");
     }
     // Series names and colours are static.
-    let spring = rrd::read(&run_cli("spring_block", &["time.t_end=20"], &out)).unwrap();
+    let spring = rrd::read(&run_cli("spring_block", &["time.integrator=wilson", "time.t_end=20"], &out)).unwrap();
     let mut expected: Vec<String> = Quantity::ALL.iter().map(|q| schema::segment_entity(0, *q)).collect();
     expected.extend(["contact/friction_force", "base/u_x", "block/x", "block/v"].map(String::from));
     expected.sort();
@@ -288,10 +288,19 @@ fn a_recording_says_how_its_run_was_stepped() {
         "{text}"
     );
     assert!(text.contains("2 slip events"), "the spring block slips twice before 850 s: {text}");
-    let (code, text) = check_cli(&run_cli("spring_block", &["time.t_end=50"], &out), None);
+    let (code, text) = check_cli(&run_cli("spring_block", &["time.integrator=wilson", "time.t_end=50"], &out), None);
     assert_eq!(code, 0, "{text}");
     assert!(text.contains("t_end = 50 s in 10000 steps of 0.005 s"), "{text}");
-    let sets = ["time.tolerance=1e-6", "time.t_end=50"];
+    assert!(!text.contains("auto"), "a named integrator is not said to be chosen: {text}");
+    // With no integrator named, the recording says which `auto` chose and why.
+    let (code, text) = check_cli(&run_cli("spring_block", &["time.t_end=50"], &out), None);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("by Tsitouras' 5(4) pair"), "{text}");
+    assert!(text.contains("time.integrator = \"auto\" chose tsit5: a body of 1 unknown (at most 1000)"), "{text}");
+    let (code, text) = check_cli(&run_cli("spring_block", &["time.accuracy=1e-5", "time.t_end=50"], &out), None);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("tolerance 3.3333333333333334e-8 per step (time.accuracy = 1e-5)"), "{text}");
+    let sets = ["time.integrator=wilson", "time.tolerance=1e-6", "time.t_end=50"];
     let (code, text) = check_cli(&run_cli("spring_block", &sets, &out), None);
     assert_eq!(code, 0, "{text}");
     assert!(text.contains("in adaptive Wilson steps from 0.005 s, tolerance 1e-6 per simulated second"), "{text}");
@@ -343,6 +352,8 @@ fn check_catches_a_nan() {
         steps: 10,
         integrator: Default::default(),
         tolerance: None,
+        chosen_because: None,
+        accuracy: None,
         slip_rate_threshold: 0.01,
         spec: slipfront::case::RecordSpec { stick_every: 1, ..Default::default() },
     };
@@ -432,6 +443,7 @@ fn stuck_limit_read_from_the_recording_matches_the_closed_form() {
     let path = run_cli(
         "paper_triangular",
         &[
+            "time.integrator=wilson",
             "friction.mu_s=400",
             "friction.mu_k=200",
             "time.t_end=50",
@@ -525,7 +537,8 @@ fn a_failed_run_leaves_a_finished_recording_up_to_its_last_good_step() {
     // (its factor (1 - λdt/2)/(1 + λdt/2) turns negative) even after the step has been halved
     // ten times: the run stops at step 6 with a diagnostic of the point's state.
     let output = Command::new(env!("CARGO_BIN_EXE_slipfront"))
-        .args(["run", &case_path("spring_block"), "--quiet", "--set", "friction.xi=1e6", "--out-dir"])
+        .args(["run", &case_path("spring_block"), "--quiet", "--set", "time.integrator=wilson"])
+        .args(["--set", "friction.xi=1e6", "--out-dir"])
         .arg(&out)
         .output()
         .unwrap();

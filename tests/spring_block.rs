@@ -8,7 +8,9 @@ use slipfront::scene;
 
 fn case_with(overrides: &[&str]) -> Case {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/cases/spring_block.toml")).unwrap();
-    let owned: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    // Wilson's method unless the overrides name another.
+    let wilson = std::iter::once("time.integrator=wilson");
+    let owned: Vec<String> = wilson.chain(overrides.iter().copied()).map(|s| s.to_string()).collect();
     case::from_str(&text, &owned).unwrap()
 }
 

@@ -16,6 +16,7 @@ pub use spec::*;
 
 pub use crate::case::error::CaseError;
 use crate::dynamics::Stepping;
+use crate::dynamics::method::{Choice, MAX_STEPS, choose};
 use crate::validate::{Checker, Violation, shortest};
 
 /// Reads, overrides, parses and validates a case file.
@@ -52,7 +53,12 @@ pub fn from_str(text: &str, overrides: &[String]) -> Result<Case, CaseError> {
     } else {
         deserialize(table)?
     };
-    let violations = case.violations();
+    let mut case = case;
+    case.resolve();
+    let mut violations = case.violations();
+    if violations.is_empty() {
+        violations.extend(case.apply_accuracy());
+    }
     if violations.is_empty() { Ok(case) } else { Err(CaseError::Invalid(violations)) }
 }
 
@@ -93,10 +99,10 @@ impl Case {
                 "is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
             );
         }
-        if let (false, SceneSpec::Point(_)) = (self.time.integrator.steps_a_point(), &self.scene) {
+        if let (false, SceneSpec::Point(_)) = (self.time.method.steps_a_point(), &self.scene) {
             time.fail(
                 "integrator",
-                self.time.integrator.name(),
+                self.time.method.name(),
                 "is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
             );
         }
@@ -145,6 +151,45 @@ impl Case {
         })
     }
 
+    /// Resolves `time.integrator`: the method named, or `auto`'s choice for the scene and why
+    /// ([`choose`]).
+    pub fn resolve(&mut self) {
+        let time = &mut self.time;
+        (time.method, time.chosen_because) = match time.integrator {
+            Choice::Named(method) => (method, None),
+            Choice::Auto => {
+                let (method, why) = choose(self.scene.problem());
+                (method, Some(why))
+            }
+        };
+    }
+
+    /// Sets the step or tolerance that `time.accuracy` asks of the method ([`Method::for_accuracy`](crate::dynamics::Method::for_accuracy));
+    /// refuses an accuracy whose fixed step would exceed the most steps a run may take.
+    fn apply_accuracy(&mut self) -> Option<Violation> {
+        let time = &mut self.time;
+        let accuracy = time.accuracy?;
+        let (dt, tolerance) = time.method.for_accuracy(accuracy, time.dt);
+        if time.t_end / dt > MAX_STEPS {
+            let mut c = Checker::new("time");
+            c.fail(
+                "accuracy",
+                accuracy,
+                format!(
+                    "asks {} for steps of {} s: {:.3e} steps for t_end = {} s, more than the {MAX_STEPS:e} allowed",
+                    time.method.name(),
+                    shortest(dt),
+                    time.t_end / dt,
+                    shortest(time.t_end)
+                ),
+            );
+            return c.violations.pop();
+        }
+        time.dt = dt;
+        time.tolerance = tolerance.or(time.tolerance);
+        None
+    }
+
     /// Slip-rate threshold of the event catalog: given, or 10 × the driving velocity.
     pub fn slip_rate_threshold(&self) -> f64 {
         self.events.slip_rate_threshold.unwrap_or(10.0 * self.scene.driving_velocity())
@@ -154,12 +199,13 @@ impl Case {
     pub fn stepping(&self) -> Stepping {
         let time = &self.time;
         Stepping {
-            method: time.integrator,
+            method: time.method,
             dt: time.dt,
             tolerance: time.adaptive_tolerance(),
             dt_max: time.dt_max(),
             dt_min: time.dt_min(),
             slip_rate_threshold: self.slip_rate_threshold(),
+            span: time.t_end,
         }
     }
 }

@@ -2,7 +2,7 @@
 
 use serde::Deserialize;
 
-use crate::dynamics::method::{MAX_STEPS, Method};
+use crate::dynamics::method::{ACCURACY_RANGE, Choice, MAX_STEPS, Method, Problem};
 use crate::frame::Quantity;
 use crate::friction::FrictionParams;
 use crate::validate::Checker;
@@ -53,10 +53,23 @@ pub struct TimeSpec {
     /// Largest adaptive step (s); `t_end / 100` by default.
     #[serde(default)]
     pub dt_max: Option<f64>,
-    /// The time integrator of dynamic scenes ([`Method`]): Wilson's θ method (the paper's, by
-    /// default), Tsitouras' 5(4) pair or SDIRK 4(3) on the rate form, or central differences.
+    /// The time integrator of dynamic scenes as the case asks for it: `auto` (the default),
+    /// resolved for the scene by [`crate::dynamics::method::choose`], or a [`Method`] by name:
+    /// Wilson's θ method (the paper's), Tsitouras' 5(4) pair or SDIRK 4(3) on the rate form, or
+    /// central differences.
     #[serde(default)]
-    pub integrator: Method,
+    pub integrator: Choice,
+    /// The relative error of slip-onset times aimed at (-), which sets the method's tolerance
+    /// or step ([`Method::for_accuracy`]); unset (the default): the case's `dt` and each
+    /// method's default tolerance.
+    #[serde(default)]
+    pub accuracy: Option<f64>,
+    /// The method the run uses: the one named, or `auto`'s choice ([`Case::resolve`](crate::case::Case::resolve)).
+    #[serde(skip)]
+    pub method: Method,
+    /// Why `auto` chose [`Self::method`]; `None` where the case named it.
+    #[serde(skip)]
+    pub chosen_because: Option<String>,
 }
 
 fn default_theta() -> f64 {
@@ -81,7 +94,7 @@ impl TimeSpec {
         c.positive("energy_tolerance", self.energy_tolerance);
         // Central differences take no tolerance at all: that is the one error worth giving.
         if let Some(tolerance) = self.tolerance {
-            match self.integrator.tolerance_rule() {
+            match self.method.tolerance_rule() {
                 Some(rule) if c.finite("tolerance", tolerance) => {
                     let above = rule.smallest.map_or(tolerance > 0.0, |smallest| tolerance >= smallest);
                     if !(above && tolerance <= rule.largest) {
@@ -96,10 +109,30 @@ impl TimeSpec {
                     format!(
                         "does not apply to {} = \"{}\", which takes fixed frames of {} sub-stepped to its stability limit",
                         c.key("integrator"),
-                        self.integrator.name(),
+                        self.method.name(),
                         c.key("dt")
                     ),
                 ),
+            }
+        }
+        if let Some(accuracy) = self.accuracy {
+            let (smallest, largest) = ACCURACY_RANGE;
+            if self.tolerance.is_some() {
+                c.fail(
+                    "accuracy",
+                    accuracy,
+                    format!(
+                        "sets the tolerance itself: give {} or {}, not both",
+                        c.key("accuracy"),
+                        c.key("tolerance")
+                    ),
+                );
+            } else if c.finite("accuracy", accuracy) && !(smallest..=largest).contains(&accuracy) {
+                c.fail(
+                    "accuracy",
+                    accuracy,
+                    format!("must lie in [{smallest:e}, {largest:e}] (a relative error of slip-onset times)"),
+                );
             }
         }
         if let Some(dt_max) = self.dt_max {
@@ -129,13 +162,13 @@ impl TimeSpec {
 
     /// The tolerance of adaptive stepping, if steps are adaptive ([`Method::adaptive_tolerance`]).
     pub fn adaptive_tolerance(&self) -> Option<f64> {
-        self.integrator.adaptive_tolerance(self.tolerance)
+        self.method.adaptive_tolerance(self.tolerance)
     }
 
     /// The energy guard's share (`energy_tolerance`) where the method keeps an energy ledger
     /// ([`Method::guards_energy`]).
     pub fn energy_guard(&self) -> Option<f64> {
-        self.integrator.guards_energy().then_some(self.energy_tolerance)
+        self.method.guards_energy().then_some(self.energy_tolerance)
     }
 
     /// Largest adaptive step (s).
@@ -145,7 +178,7 @@ impl TimeSpec {
 
     /// Smallest adaptive step (s) ([`Method::dt_min`]).
     pub fn dt_min(&self) -> f64 {
-        self.integrator.dt_min(self.t_end)
+        self.method.dt_min(self.t_end)
     }
 
     /// Number of steps: `t_end/dt` rounded up; the last step is shortened to end at `t_end`.
@@ -333,6 +366,17 @@ impl NormalTractionSpec {
 }
 
 impl SceneSpec {
+    /// What `time.integrator = "auto"` needs to know of the scene ([`crate::dynamics::method::choose`]).
+    pub fn problem(&self) -> Problem {
+        match self {
+            SceneSpec::Point(_) => Problem::Point,
+            SceneSpec::SpringBlock(_) => Problem::Body { unknowns: 1 },
+            SceneSpec::Block(b) => Problem::Body {
+                unknowns: b.nx.saturating_add(1).saturating_mul(b.ny.saturating_add(1)).saturating_mul(2),
+            },
+        }
+    }
+
     pub fn kind(&self) -> &'static str {
         match self {
             SceneSpec::Point(_) => "point",

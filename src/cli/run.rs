@@ -172,7 +172,11 @@ fn report(args: &RunArgs, case: &case::Case, outcome: Outcome, written: &str, st
                     catalog.events.len(),
                     catalog.ruptures.len(),
                 );
-                if let Err(exit) = print(&format!("{line}\n")) {
+                let chosen = match &case.time.chosen_because {
+                    Some(why) => format!("  time.integrator = \"auto\" chose {}: {why}\n", case.time.method.name()),
+                    None => String::new(),
+                };
+                if let Err(exit) = print(&format!("{line}\n{chosen}")) {
                     return exit;
                 }
             }

@@ -4,10 +4,11 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::dynamics::central::CentralDifference;
+use crate::dynamics::central::{CentralDifference, highest_frequency};
 use crate::dynamics::control::StepControl;
 use crate::dynamics::integrator::Integrator;
 use crate::dynamics::rate_form::driver::{RateForm, Tableau};
+use crate::dynamics::rate_form::tsit5::bounded_growth;
 use crate::dynamics::step_doubling::StepDoubling;
 use crate::dynamics::system::System;
 use crate::dynamics::wilson::Wilson;
@@ -34,6 +35,83 @@ pub enum Method {
     Central,
 }
 
+/// `time.integrator` as a case file gives it: a method by name, or `auto` (the default), which
+/// [`choose`] resolves for the scene.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Choice {
+    #[default]
+    Auto,
+    Named(Method),
+}
+
+/// Every value `time.integrator` takes.
+pub const CHOICES: [&str; 5] = ["auto", "wilson", "tsit5", "sdirk4", "central"];
+
+impl<'de> Deserialize<'de> for Choice {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        match name.as_str() {
+            "auto" => Ok(Choice::Auto),
+            _ => Method::from_name(&name)
+                .map(Choice::Named)
+                .ok_or_else(|| serde::de::Error::unknown_variant(&name, &CHOICES)),
+        }
+    }
+}
+
+/// What [`choose`] needs to know of a scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Problem {
+    /// One contact point under a prescribed motion.
+    Point,
+    /// A body of this many unknowns (a rigid block has one).
+    Body { unknowns: usize },
+}
+
+/// The most unknowns of a body that `auto` gives to Tsitouras' pair; larger bodies get central
+/// differences. On the paper's 10 × 1 mesh (44 unknowns) the pair runs 1000 s in half the time of
+/// Wilson's method at dt = 0.01 s with 50× less onset error; on 100 × 10 (2 222 unknowns) central
+/// differences cost 6 ms per simulated second against the pair's 17 ms, and on 1000 × 100 they
+/// take 8 minutes where the pair takes 3.5 hours (docs/performance.md).
+pub const AUTO_PAIR_UNKNOWNS: usize = 1000;
+
+/// `time.integrator = "auto"`: the method for `problem`, and why.
+pub fn choose(problem: Problem) -> (Method, String) {
+    match problem {
+        Problem::Point => {
+            (Method::Wilson, "a point scene prescribes its motion; Wilson's implicit friction update is its own".into())
+        }
+        Problem::Body { unknowns } if unknowns <= AUTO_PAIR_UNKNOWNS => (
+            Method::Tsit5,
+            format!(
+                "a body of {unknowns} unknown{} (at most {AUTO_PAIR_UNKNOWNS}): Tsitouras' adaptive pair is the \
+                 fastest at the accuracy asked",
+                if unknowns == 1 { "" } else { "s" }
+            ),
+        ),
+        Problem::Body { unknowns } => (
+            Method::Central,
+            format!(
+                "a body of {unknowns} unknowns (more than {AUTO_PAIR_UNKNOWNS}): central differences, whose step \
+                 needs no solve, are the fastest on fine meshes"
+            ),
+        ),
+    }
+}
+
+/// The range `time.accuracy` must lie in.
+pub const ACCURACY_RANGE: (f64, f64) = (1e-9, 1e-2);
+
+/// How each method's setting maps to the relative error of slip-onset times on the paper case
+/// (onset error over onset time; the first four onsets, 420–429 s, against SciPy's Radau at
+/// rtol 1e-11; 2026-11): at most about 300 × the tolerance for `tsit5` (230 to 400 measured
+/// from 1e-8 to 1e-10) and for `sdirk4` (72 to 345 from 1e-7 to 7e-9), `1.6 dt²` for Wilson's
+/// fixed steps (dt in s; 1.55 to 1.9 from 0.01 to 0.001 s) and `0.5 dt²` for central
+/// differences (0.28 to 0.46 from 0.01 to 0.0018 s). Onset errors scatter by a factor of a
+/// few about these from one setting to the next; docs/performance.md has the measurements.
+const ONSET_ERROR_PER_TOLERANCE: [(Method, f64); 2] = [(Method::Tsit5, 300.0), (Method::Sdirk4, 300.0)];
+const ONSET_ERROR_PER_STEP_SQUARED: [(Method, f64); 2] = [(Method::Wilson, 1.6), (Method::Central, 0.5)];
+
 /// Local error per step of `tsit5` when `time.tolerance` is not given.
 pub const TSIT5_DEFAULT_TOLERANCE: f64 = 1e-8;
 
@@ -46,6 +124,12 @@ pub const SDIRK4_DEFAULT_TOLERANCE: f64 = 1e-7;
 /// case at 1e-12 (776 s), each with a step below the smallest allowed; both run their 1000 s at
 /// 1e-11.
 pub const SDIRK4_SMALLEST_TOLERANCE: f64 = 1e-11;
+
+/// The smallest local error per step that `tsit5` is let hold. Through a slip's onset the pair
+/// walks the logarithmic singularity of `Λ` with steps of picoseconds, where rounding in the
+/// time itself stops the error estimate from falling: the spring block fails at 3e-14 (796.87 s,
+/// asking for a step of 0.66 ps) and runs its 1000 s at 1e-13.
+pub const TSIT5_SMALLEST_TOLERANCE: f64 = 1e-13;
 
 /// Most steps a run may take, to refuse a typo such as `dt = 1e-12` before it starts.
 pub const MAX_STEPS: f64 = 1e9;
@@ -61,6 +145,26 @@ pub struct ToleranceRule {
 }
 
 impl Method {
+    /// The method a case file names `name`, if any.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [Method::Wilson, Method::Tsit5, Method::Sdirk4, Method::Central].into_iter().find(|m| m.name() == name)
+    }
+
+    /// The setting that aims at a relative onset error of `accuracy` (`time.accuracy`): the
+    /// Runge–Kutta methods' tolerance, or the fixed step of Wilson's method and central
+    /// differences, never longer than the case's `dt` (which also spaces their frames). Returns
+    /// `(dt, tolerance)`.
+    pub fn for_accuracy(self, accuracy: f64, dt: f64) -> (f64, Option<f64>) {
+        let per = |table: &[(Method, f64)]| table.iter().find(|(m, _)| *m == self).map(|(_, c)| *c);
+        if let Some(c) = per(&ONSET_ERROR_PER_TOLERANCE) {
+            let smallest = self.tolerance_rule().and_then(|r| r.smallest).unwrap_or(0.0);
+            (dt, Some((accuracy / c).max(smallest)))
+        } else {
+            let c = per(&ONSET_ERROR_PER_STEP_SQUARED).expect("every method has a mapping");
+            (dt.min((accuracy / c).sqrt()), None)
+        }
+    }
+
     /// The case file's name for it.
     pub fn name(self) -> &'static str {
         match self {
@@ -82,7 +186,12 @@ impl Method {
                  can exceed it through the slips"
                     .to_string(),
             ),
-            Method::Tsit5 => (None, format!("a relative local error per step of {}", self.name())),
+            Method::Tsit5 => (
+                Some(TSIT5_SMALLEST_TOLERANCE),
+                "a relative local error per step of tsit5; below that, rounding in the time itself can \
+                 exceed it at a slip's onset"
+                    .to_string(),
+            ),
             Method::Central => return None,
         };
         Some(ToleranceRule { smallest, largest: 0.1, meaning })
@@ -174,20 +283,44 @@ pub struct Stepping {
     pub dt_min: f64,
     /// The slip rate (m/s) whose crossings the Runge–Kutta methods locate.
     pub slip_rate_threshold: f64,
+    /// The simulated time the run spans (s), over which Tsitouras' pair bounds the growth of
+    /// undamped modes.
+    pub span: f64,
 }
 
 impl Stepping {
     /// The integrator for `system`.
     pub fn integrator(&self, system: &System) -> Box<dyn Integrator> {
-        let control = |tolerance| StepControl::new(tolerance, self.dt, self.dt_max, self.dt_min);
-        let rate_form =
-            |tableau, tolerance| Box::new(RateForm::new(tableau, control(tolerance), self.slip_rate_threshold));
+        let control = |tolerance, dt_max: f64| StepControl::new(tolerance, self.dt, dt_max, self.dt_min);
+        let rate_form = |tableau, tolerance, dt_max| {
+            Box::new(RateForm::new(tableau, control(tolerance, dt_max), self.slip_rate_threshold))
+        };
         match (self.method, self.tolerance) {
             (Method::Wilson, None) => Box::new(Wilson::default()),
-            (Method::Wilson, Some(tolerance)) => Box::new(StepDoubling::new(control(tolerance))),
+            (Method::Wilson, Some(tolerance)) => Box::new(StepDoubling::new(control(tolerance, self.dt_max))),
             (Method::Central, _) => Box::new(CentralDifference::for_system(system)),
-            (Method::Tsit5, tolerance) => rate_form(Tableau::Tsit5, tolerance.unwrap_or(TSIT5_DEFAULT_TOLERANCE)),
-            (Method::Sdirk4, tolerance) => rate_form(Tableau::Sdirk4, tolerance.unwrap_or(SDIRK4_DEFAULT_TOLERANCE)),
+            (Method::Tsit5, tolerance) => rate_form(
+                Tableau::Tsit5,
+                tolerance.unwrap_or(TSIT5_DEFAULT_TOLERANCE),
+                self.dt_max.min(tsit5_bounded_step(system, self.span)),
+            ),
+            (Method::Sdirk4, tolerance) => {
+                rate_form(Tableau::Sdirk4, tolerance.unwrap_or(SDIRK4_DEFAULT_TOLERANCE), self.dt_max)
+            }
         }
     }
+}
+
+/// How much Tsitouras' pair may amplify an undamped mode over a whole run.
+pub const TSIT5_GROWTH: f64 = 2.0;
+
+/// The largest step of Tsitouras' pair that amplifies no undamped mode of `system` with its
+/// contact stuck by more than [`TSIT5_GROWTH`] over `span` seconds: `hω_max` from
+/// [`bounded_growth`], `ω_max` the highest frequency. Every explicit fifth-order pair amplifies
+/// undamped modes (`|R(iy)| > 1` above `y = 0.47798` for this one), and its error control alone
+/// keeps `hω` of the stiffest mode near 1 to 2: a stuck contact's ringing then grows without
+/// bound, from 1e-4 to 7 N/m rms in 100 s on the paper case (`tests/stuck_limit.rs`).
+fn tsit5_bounded_step(system: &System, span: f64) -> f64 {
+    let omega = highest_frequency(&system.body, &system.contact);
+    bounded_growth(omega * span, TSIT5_GROWTH) / omega
 }

@@ -64,6 +64,12 @@ pub struct RecordingPlan {
     /// The adaptive steps' tolerance, if steps are adaptive (`time.tolerance`, or Tsit5's default).
     #[serde(default)]
     pub tolerance: Option<f64>,
+    /// Why `time.integrator = "auto"` chose [`Self::integrator`]; `None` where the case named it.
+    #[serde(default)]
+    pub chosen_because: Option<String>,
+    /// `time.accuracy`, where the case set the method's step or tolerance by it.
+    #[serde(default)]
+    pub accuracy: Option<f64>,
     pub slip_rate_threshold: f64,
     pub spec: RecordSpec,
 }
@@ -76,18 +82,40 @@ impl RecordingPlan {
             t_end: case.time.t_end,
             dt: case.time.dt,
             steps: case.time.steps(),
-            integrator: case.time.integrator,
+            integrator: case.time.method,
             tolerance: case.time.adaptive_tolerance(),
+            chosen_because: case.time.chosen_because.clone(),
+            accuracy: case.time.accuracy,
             slip_rate_threshold: case.slip_rate_threshold(),
             spec: case.record.clone(),
         }
     }
 
     /// How the run steps, for people: `in N steps of dt s`, or the adaptive integrator and its
-    /// tolerance.
+    /// tolerance, and why where `auto` chose it.
     pub fn stepping(&self) -> String {
-        self.integrator.describe(self.tolerance, self.steps, self.dt)
+        stepping(self.integrator, self.tolerance, self.steps, self.dt, &self.chosen_because, self.accuracy)
     }
+}
+
+/// [`Method::describe`], with `time.accuracy` where it set the step or tolerance, and the reason
+/// where `auto` chose the method.
+fn stepping(
+    method: Method,
+    tolerance: Option<f64>,
+    steps: u64,
+    dt: f64,
+    chosen_because: &Option<String>,
+    accuracy: Option<f64>,
+) -> String {
+    let mut text = method.describe(tolerance, steps, dt);
+    if let Some(accuracy) = accuracy {
+        text.push_str(&format!(" (time.accuracy = {accuracy:e})"));
+    }
+    if let Some(why) = chosen_because {
+        text.push_str(&format!("; time.integrator = \"auto\" chose {}: {why}", method.name()));
+    }
+    text
 }
 
 /// What a series reads from a frame.
@@ -202,6 +230,12 @@ pub struct RunInfo {
     /// See [`RecordingPlan::tolerance`].
     #[serde(default)]
     pub tolerance: Option<f64>,
+    /// See [`RecordingPlan::chosen_because`].
+    #[serde(default)]
+    pub chosen_because: Option<String>,
+    /// See [`RecordingPlan::accuracy`].
+    #[serde(default)]
+    pub accuracy: Option<f64>,
     /// Contact segments of the scene.
     pub segments: usize,
     pub recorded_segments: Vec<usize>,
@@ -227,7 +261,7 @@ pub struct RunInfo {
 impl RunInfo {
     /// How the run steps ([`RecordingPlan::stepping`]).
     pub fn stepping(&self) -> String {
-        self.integrator.describe(self.tolerance, self.steps, self.dt)
+        stepping(self.integrator, self.tolerance, self.steps, self.dt, &self.chosen_because, self.accuracy)
     }
 
     /// The description of a run over `layout` recording `series`.
@@ -252,6 +286,8 @@ impl RunInfo {
             steps: plan.steps,
             integrator: plan.integrator,
             tolerance: plan.tolerance,
+            chosen_because: plan.chosen_because.clone(),
+            accuracy: plan.accuracy,
             segments: layout.segments.len(),
             recorded_segments: segments.to_vec(),
             segment_labels: segments

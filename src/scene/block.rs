@@ -47,7 +47,7 @@ impl BlockScene {
         );
         // A large body at a fixed step is condensed onto its contact; adaptive steps change τ
         // every attempt, and each new τ would need the body refactored.
-        let fixed = case.time.integrator.fixed_implicit_steps(case.time.tolerance);
+        let fixed = case.time.method.fixed_implicit_steps(case.time.tolerance);
         let linear_solver = if condensation_pays(body.dofs(), spec.nx + 1) && fixed {
             LinearSolver::Condensed
         } else {
@@ -85,7 +85,7 @@ fn layout(case: &Case, spec: &BlockSpec, mesh: StructuredMesh) -> Layout {
             .collect(),
         mesh: Some(mesh),
         driving_velocity: spec.base_velocity.abs(),
-        instantaneous_slip_rate: case.time.integrator.instantaneous_slip_rate(),
+        instantaneous_slip_rate: case.time.method.instantaneous_slip_rate(),
     }
 }
 

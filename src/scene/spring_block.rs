@@ -49,7 +49,7 @@ impl SpringBlockScene {
             surface_nodes: Vec::new(),
             mesh: None,
             driving_velocity: spec.velocity.abs(),
-            instantaneous_slip_rate: case.time.integrator.instantaneous_slip_rate(),
+            instantaneous_slip_rate: case.time.method.instantaneous_slip_rate(),
         };
         Ok(DynamicScene::assemble(case, system, layout, SpringBlockShape { velocity: spec.velocity }))
     }

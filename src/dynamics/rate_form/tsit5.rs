@@ -42,6 +42,49 @@ const ERROR: [f64; 7] = [
     1.0 / 66.0,
 ];
 
+/// The extent of the pair's stability region along the imaginary axis: `|R(iy)| ≤ 1` for
+/// `|y| ≤ 0.47798` (the first crossing of 1 by [`amplification`]; `|R(iy)| - 1 ≈ -4e-5 y⁶`
+/// below it), rounded down. Beyond it every undamped mode grows a little at every step:
+/// `|R(iy)| = 1.00013` at `y = 1`, 1.026 at 2, 1.28 at 3.
+pub const IMAGINARY_STABILITY: f64 = 0.4779;
+
+/// `|R(iy)|`: the factor by which one step of `h` multiplies the amplitude of an undamped mode
+/// of frequency `ω = y/h`. `R(z)` is the pair's stability function, `R(z) = Y₇` from the stage
+/// recursion `Yᵢ = 1 + z Σⱼ aᵢⱼ Yⱼ` of `ẏ = λy` (`z = hλ`) over the tableau above; the last row
+/// of `A` is `b`.
+pub fn amplification(y: f64) -> f64 {
+    // Complex numbers as (re, im); z = iy.
+    let mut stages = [(1.0, 0.0); 7];
+    for (i, row) in A.iter().enumerate() {
+        let (re, im) = row.iter().zip(&stages).fold((0.0, 0.0), |(re, im), (a, s)| (re + a * s.0, im + a * s.1));
+        // 1 + iy (re + i im) = (1 - y im) + i y re.
+        stages[i + 1] = (1.0 - y * im, y * re);
+    }
+    let (re, im) = stages[6];
+    re.hypot(im)
+}
+
+/// The largest `y = hω` at which `n = span ω / y` steps amplify an undamped mode of frequency
+/// `ω` by at most `growth` over `span` seconds: `ln |R(iy)| · span ω / y ≤ ln growth`, and at
+/// least [`IMAGINARY_STABILITY`], where no mode grows at all. `ln |R(iy)|/y` increases with `y`
+/// above that, so bisection finds it.
+pub fn bounded_growth(omega_span: f64, growth: f64) -> f64 {
+    let within = |y: f64| amplification(y).ln() * omega_span / y <= growth.ln();
+    let (mut lo, mut hi) = (IMAGINARY_STABILITY, 3.0);
+    if within(hi) {
+        return hi;
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if within(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
 /// The pair's error is per step and falls as `h⁵`: the next step is `0.9 h (tolerance/error)^{1/5}`,
 /// at most 5 times the last.
 pub(crate) const FIFTH_ORDER: ErrorScaling = ErrorScaling { per_unit_step: false, root: fifth_root, max_growth: 5.0 };
@@ -133,6 +176,42 @@ mod tests {
             rate.copy_from_slice(pair.solution_rate());
         }
         (y[0] - 1.0_f64.cos()).abs().max((y[1] + 1.0_f64.sin()).abs())
+    }
+
+    #[test]
+    fn one_step_on_an_oscillator_grows_it_by_the_stability_function() {
+        // One step of h on y'' = -y (ω = 1) from (1, 0) multiplies the amplitude
+        // √(y² + y'²) by |R(ih)|: stepping the tableau against the polynomial of `amplification`,
+        // and both against an independent evaluation (NumPy, complex arithmetic on the same
+        // coefficients): 0.9999999923791167 at 0.25, 1.0001280140643498 at 1, 1.0255397313319492
+        // at 2, and a first crossing of 1 at 0.47797886884.
+        for (h, expected) in
+            [(0.25, 0.999_999_992_379_116_7), (1.0, 1.000_128_014_064_349_8), (2.0, 1.025_539_731_331_949_2)]
+        {
+            let mut pair = Tsit5::new(2);
+            pair.step(&[1.0, 0.0], &[0.0, -1.0], 0.0, h, &[1.0, 1.0], oscillator);
+            let stepped = pair.solution()[0].hypot(pair.solution()[1]);
+            assert!((stepped - expected).abs() < 1e-14, "h = {h}: stepped {stepped}, expected {expected}");
+            assert!((amplification(h) - expected).abs() < 1e-14, "h = {h}: {}", amplification(h));
+        }
+        assert!(amplification(IMAGINARY_STABILITY) <= 1.0 && amplification(0.4780) > 1.0);
+        for k in 1..=477 {
+            let y = k as f64 * 1e-3;
+            assert!(amplification(y) <= 1.0, "|R({y}i)| = {}", amplification(y));
+        }
+    }
+
+    #[test]
+    fn the_bounded_growth_step_amplifies_by_the_growth_allowed() {
+        // The paper case's highest frequency (≈ 50 rad/s) over 1000 s, doubling allowed.
+        let omega_span = 50.0 * 1000.0;
+        let y = bounded_growth(omega_span, 2.0);
+        let growth = amplification(y).powf(omega_span / y);
+        assert!((growth - 2.0).abs() < 1e-6, "y = {y}: growth {growth}");
+        assert!((0.7..0.8).contains(&y), "y = {y}");
+        // A run too long for any growth keeps within the imaginary-axis limit.
+        let y = bounded_growth(1e30, 2.0);
+        assert!((IMAGINARY_STABILITY..0.47798).contains(&y) && amplification(y) <= 1.0, "y = {y}");
     }
 
     #[test]
