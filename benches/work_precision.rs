@@ -1,6 +1,7 @@
 //! Work-precision benchmark: error against wall time for the spring-block and the
 //! paper case, across step sizes (fixed Wilson-θ) and tolerances (adaptive Wilson-θ by step
-//! doubling, Tsitouras' explicit 5(4) pair and the L-stable SDIRK 4(3) on the rate form).
+//! doubling, Tsitouras' explicit 5(4) pair and the L-stable SDIRK 4(3) on the rate form), and
+//! `time.integrator = "auto"` (the default) at its default and at several `time.accuracy`.
 //!
 //! `cargo bench --bench work_precision` writes `recordings/bench/work_precision.md` (the table)
 //! and `recordings/bench/work_precision.png` (the plot). `-- --quick` skips the finest
@@ -267,14 +268,30 @@ fn main() {
         eprintln!("{}: reference by tsit5 at tolerance {:e}", b.name, b.reference_tolerance);
         let reference = measure(&tsit5(b.reference_tolerance), 1).expect("the reference completes");
         let looser = measure(&tsit5(10.0 * b.reference_tolerance), 1).expect("the check completes");
-        let check = measure(&with(&[format!("time.dt={}", b.check_dt)]), 1).expect("the check completes");
+        let wilson = |dt: f64| with(&["time.integrator=wilson".into(), format!("time.dt={dt}")]);
+        let check = measure(&wilson(b.check_dt), 1).expect("the check completes");
         let mut rows = Vec::new();
         for &dt in b.fixed {
             eprintln!("{}: fixed dt = {dt}", b.name);
-            let m = measure(&with(&[format!("time.dt={dt}")]), repeats);
+            let m = measure(&wilson(dt), repeats);
             rows.push(Row {
                 integrator: "Wilson-θ fixed",
                 setting: format!("dt = {dt} s"),
+                onset: 0.0,
+                traction: 0.0,
+                after_slips: None,
+                m,
+            });
+        }
+        // `auto` (no integrator named) at its default and at several accuracies.
+        for accuracy in [None, Some(1e-5), Some(1e-6), Some(1e-7)] {
+            eprintln!("{}: auto, accuracy {accuracy:?}", b.name);
+            let case = with(&accuracy.map(|a| vec![format!("time.accuracy={a:e}")]).unwrap_or_default());
+            let chosen = case.time.method.name();
+            let m = measure(&case, repeats);
+            rows.push(Row {
+                integrator: "auto",
+                setting: accuracy.map_or(format!("default ({chosen})"), |a| format!("accuracy = {a:e} ({chosen})")),
                 onset: 0.0,
                 traction: 0.0,
                 after_slips: None,
@@ -343,6 +360,7 @@ fn main() {
                         "Tsit5" => format!("{} rhs", 6 * (m.steps + m.rejected)),
                         "Wilson-θ adaptive" => format!("{} solves", 3 * (m.steps + m.rejected)),
                         "SDIRK4" => format!("{} Newton, {} factorizations", m.newton.0, m.newton.1),
+                        "auto" => format!("{} attempts", m.steps + m.rejected),
                         _ => format!("{} solves", m.steps),
                     };
                     let after = row.after_slips.map_or("–".into(), |(e, steps)| format!("{e:.2e} ({steps})"));
@@ -356,12 +374,12 @@ fn main() {
             report.push_str(&line);
         }
         for metric in [Metric::Onset, Metric::AfterSlips] {
-            for method in ["Tsit5", "SDIRK4"] {
+            for method in ["Tsit5", "SDIRK4", "auto"] {
                 report.push_str(&equal_error(&rows, method, metric));
             }
         }
         for (metric, pick) in [("onset", 0), ("traction", 1)] {
-            let curves = ["Wilson-θ fixed", "Wilson-θ adaptive", "Tsit5", "SDIRK4"]
+            let curves = ["Wilson-θ fixed", "Wilson-θ adaptive", "Tsit5", "SDIRK4", "auto"]
                 .iter()
                 .map(|name| WorkPrecisionCurve {
                     label: name.to_string(),

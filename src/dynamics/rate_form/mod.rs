@@ -22,11 +22,12 @@
 //!
 //! The method is explicit, and the body and its contact springs are undamped: their modes have
 //! imaginary eigenvalues `±iω`. Like every explicit fifth-order pair, Tsitouras' amplifies them
-//! slightly (its stability function has `|R(iy)| = 1.00013` at `y = hω = 1`, 1.026 at 2, 1.28
-//! at 3; on the negative real axis it is stable up to 3.5), so the error control keeps `hω` of
-//! the stiffest mode, the contact spring `α_t` on the lumped mass it carries, near 1 to 2. That
-//! mode has `ω ≈ 45 rad/s` on the paper's 10 × 1 mesh, where the steps average 0.02 s, and
-//! `ω ≈ 450 rad/s` on 1000 × 100, where they are about 3 ms.
+//! (its stability function has `|R(iy)| ≤ 1` only up to `y = hω = 0.478`, then 1.00013 at 1,
+//! 1.026 at 2, 1.28 at 3; [`tsit5::amplification`]). Its error control alone would hold `hω` of
+//! the stiffest mode near 1 to 2 and let a stuck contact's ringing grow without bound, so
+//! [`crate::dynamics::method`] also bounds the step by the `hω_max` at which no mode grows more
+//! than 2× over the run ([`tsit5::bounded_growth`]): 17 ms on the paper's 10 × 1 mesh
+//! (`ω_max ≈ 45 rad/s`) over 1000 s.
 //!
 //! The exact flow keeps every point's `R ≤ 1` and `1/R*` in `[1, μ_s/μ_k]`; the pair keeps
 //! them only to its local error, so each accepted state is put back on that set where it has
