@@ -322,3 +322,27 @@ fn central_differences_at_the_ends_of_the_ranges() {
     // It takes no tolerance.
     at_the_ends_of_the_ranges("central", &[]);
 }
+
+#[test]
+fn stiff_healing_keeps_its_range_and_every_step() {
+    // Healing at up to 1e10/s relaxes 1/R* to μ_s/μ_k within a tiny fraction of a step. The
+    // implicit friction update (Wilson's method, central differences) weights it so that its
+    // linear part decays by the exact e^{-γξaΔt} (`friction::update`): every step stays in
+    // [1, μ_s/μ_k] with no step split, so stiff healing costs what the default healing does.
+    for integrator in ["time.integrator=wilson", "time.integrator=central"] {
+        for xi in ["friction.xi=1e5", "friction.xi=1e6", "friction.xi=1e10"] {
+            for (name, t_end) in [(SPRING, "time.t_end=1000"), (PAPER, "time.t_end=100")] {
+                let overrides = [integrator, xi, t_end];
+                let report = stress(name, &overrides).unwrap_or_else(|e| panic!("{name} {overrides:?}: {e}"));
+                let steps = load(name, &overrides).time.steps();
+                assert_eq!(report.steps, steps, "{name} {overrides:?}: every step of dt");
+                assert_eq!(report.split_steps, 0, "{name} {overrides:?}: no step split");
+            }
+        }
+    }
+    // With no integrator named, a stiff healing gets Wilson's method, not the explicit pair
+    // (which took 65 million steps and 45 s for the spring block at 1e6/s).
+    let method = |xi: &str| load(SPRING, &[xi]).time.method;
+    assert_eq!(method("friction.xi=1e6"), slipfront::dynamics::Method::Wilson);
+    assert_eq!(method("friction.xi=0.1"), slipfront::dynamics::Method::Tsit5);
+}

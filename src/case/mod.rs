@@ -16,7 +16,7 @@ pub use spec::*;
 
 pub use crate::case::error::CaseError;
 use crate::dynamics::Stepping;
-use crate::dynamics::method::{Choice, MAX_STEPS, choose};
+use crate::dynamics::method::{Choice, MAX_STEPS, Problem, choose};
 use crate::validate::{Checker, Violation, shortest};
 
 /// Reads, overrides, parses and validates a case file.
@@ -154,14 +154,23 @@ impl Case {
     /// Resolves `time.integrator`: the method named, or `auto`'s choice for the scene and why
     /// ([`choose`]).
     pub fn resolve(&mut self) {
-        let time = &mut self.time;
-        (time.method, time.chosen_because) = match time.integrator {
+        (self.time.method, self.time.chosen_because) = match self.time.integrator {
             Choice::Named(method) => (method, None),
             Choice::Auto => {
-                let (method, why) = choose(self.scene.problem());
+                let (method, why) = choose(self.problem());
                 (method, Some(why))
             }
         };
+    }
+
+    /// What `time.integrator = "auto"` needs to know of the case ([`choose`]).
+    pub fn problem(&self) -> Problem {
+        let p = &self.friction;
+        let healing = p.rstar_scale() * p.xi * p.n.max(1.0) * p.kinetic_static_ratio() * self.time.dt;
+        match self.scene.unknowns() {
+            None => Problem::Point,
+            Some(unknowns) => Problem::Body { unknowns, healing },
+        }
     }
 
     /// Sets the step or tolerance that `time.accuracy` asks of the method ([`Method::for_accuracy`](crate::dynamics::Method::for_accuracy));

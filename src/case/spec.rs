@@ -2,7 +2,7 @@
 
 use serde::Deserialize;
 
-use crate::dynamics::method::{ACCURACY_RANGE, Choice, MAX_STEPS, Method, Problem};
+use crate::dynamics::method::{ACCURACY_RANGE, Choice, MAX_STEPS, Method};
 use crate::frame::Quantity;
 use crate::friction::FrictionParams;
 use crate::validate::Checker;
@@ -366,14 +366,14 @@ impl NormalTractionSpec {
 }
 
 impl SceneSpec {
-    /// What `time.integrator = "auto"` needs to know of the scene ([`crate::dynamics::method::choose`]).
-    pub fn problem(&self) -> Problem {
+    /// Unknowns of the scene's body; `None` for a point scene.
+    pub fn unknowns(&self) -> Option<usize> {
         match self {
-            SceneSpec::Point(_) => Problem::Point,
-            SceneSpec::SpringBlock(_) => Problem::Body { unknowns: 1 },
-            SceneSpec::Block(b) => Problem::Body {
-                unknowns: b.nx.saturating_add(1).saturating_mul(b.ny.saturating_add(1)).saturating_mul(2),
-            },
+            SceneSpec::Point(_) => None,
+            SceneSpec::SpringBlock(_) => Some(1),
+            SceneSpec::Block(b) => {
+                Some(b.nx.saturating_add(1).saturating_mul(b.ny.saturating_add(1)).saturating_mul(2))
+            }
         }
     }
 

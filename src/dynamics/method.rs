@@ -59,13 +59,15 @@ impl<'de> Deserialize<'de> for Choice {
     }
 }
 
-/// What [`choose`] needs to know of a scene.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// What [`choose`] needs to know of a case.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Problem {
     /// One contact point under a prescribed motion.
     Point,
-    /// A body of this many unknowns (a rigid block has one).
-    Body { unknowns: usize },
+    /// A body of `unknowns` (a rigid block has one), whose healing relaxes `1/R*` at the rate
+    /// `γ ξ n μ_k/μ_s` (1/s; eq. 4 linearized, `n` at least 1): `healing` is that rate times
+    /// `dt`, the number of healing times in a step.
+    Body { unknowns: usize, healing: f64 },
 }
 
 /// The most unknowns of a body that `auto` gives to Tsitouras' pair; larger bodies get central
@@ -75,13 +77,26 @@ pub enum Problem {
 /// take 8 minutes where the pair takes 3.5 hours (docs/performance.md).
 pub const AUTO_PAIR_UNKNOWNS: usize = 1000;
 
-/// `time.integrator = "auto"`: the method for `problem`, and why.
+/// `time.integrator = "auto"`: the method for `problem`, and why. A small body whose healing
+/// is stiff on the case's `dt` gets Wilson's method: Tsitouras' pair would be held by its
+/// stability to steps of a fraction of the healing time (the spring block at `ξ = 1e6/s`:
+/// 65 million steps, 45 s, against Wilson's 0.5 s).
 pub fn choose(problem: Problem) -> (Method, String) {
     match problem {
         Problem::Point => {
             (Method::Wilson, "a point scene prescribes its motion; Wilson's implicit friction update is its own".into())
         }
-        Problem::Body { unknowns } if unknowns <= AUTO_PAIR_UNKNOWNS => (
+        Problem::Body { unknowns, healing } if unknowns <= AUTO_PAIR_UNKNOWNS && healing > 1.0 => (
+            Method::Wilson,
+            format!(
+                "a body of {unknowns} unknown{} whose healing time (1/(ξ n μ_k/μ_s)) is {} times shorter than \
+                 time.dt: an explicit pair would be held to steps of a fraction of it, where Wilson's implicit \
+                 update steps over it",
+                if unknowns == 1 { "" } else { "s" },
+                crate::validate::shortest(healing)
+            ),
+        ),
+        Problem::Body { unknowns, .. } if unknowns <= AUTO_PAIR_UNKNOWNS => (
             Method::Tsit5,
             format!(
                 "a body of {unknowns} unknown{} (at most {AUTO_PAIR_UNKNOWNS}): Tsitouras' adaptive pair is the \
@@ -89,7 +104,7 @@ pub fn choose(problem: Problem) -> (Method, String) {
                 if unknowns == 1 { "" } else { "s" }
             ),
         ),
-        Problem::Body { unknowns } => (
+        Problem::Body { unknowns, .. } => (
             Method::Central,
             format!(
                 "a body of {unknowns} unknowns (more than {AUTO_PAIR_UNKNOWNS}): central differences, whose step \

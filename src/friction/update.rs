@@ -7,7 +7,10 @@
 //!   return, exact in 1D): `|f_{n+1}| = |f_trial| - α_t Δp`, where `Δp = ∫ Λ dt ≥ 0`.
 //! * Degree of structure `z = 1/R*`: the trapezoidal rule on eq. (4),
 //!   `z₁ = z₀ - γκ Δp [(z₀-1)^m + (z₁-1)^m]/2 + γξ Δt [(1-a z₀)^n + (1-a z₁)^n]/2`, `a = μ_k/μ_s`,
-//!   implicit in `z₁` (the decay term is integrated in `p`, the healing term in `t`).
+//!   implicit in `z₁` (the decay term is integrated in `p`, the healing term in `t`); a healing
+//!   that relaxes within the step (`γξΔt n a > 1`) is weighted so that its linear part decays
+//!   by the exact `e^{-γξΔt a}` ([`healing_weights`]), monotonically, where the trapezoidal rule
+//!   would overshoot `μ_s/μ_k`.
 //! * Normal sliding ratio: `Ṙ = -r ln(R) Λ` integrated exactly, `Ψ(R₁) = Ψ(R₀) + r Δp`
 //!   (see [`crate::friction::expint`]).
 //! * Consistency: the subloading surface passes through the new traction,
@@ -461,6 +464,28 @@ struct Structure {
     d_plastic: f64,
 }
 
+/// The weights `(w₀, w₁)` of eq. (4)'s healing term at the start and the end of a step of
+/// `dt`, with `w₀ + w₁ = γξΔt`. With `x = γξΔt n a` (`a = μ_k/μ_s`; the healing's rate of
+/// relaxation over the step, linearized): the trapezoidal rule's `(γξΔt/2, γξΔt/2)` for `x ≤ 1`,
+/// where its factor on the healing's linear part, `(1 - x/2)/(1 + x/2)`, lies within `x³/12` of
+/// the exact `e^{-x}`; above, the weighting `w₁ = θ γξΔt` with
+/// `θ = (x - 1 + e^{-x}) / (x (1 - e^{-x}))`, which makes that factor `e^{-x}` itself: for
+/// `n = 1` without slip the step is the exact solution `μ_s/μ_k - (μ_s/μ_k - z₀) e^{-γξaΔt}`.
+/// Either factor is positive, so `1/R*` approaches `μ_s/μ_k` monotonically however stiff the
+/// healing; the trapezoidal rule alone would reflect it about the bound (towards
+/// `2 μ_s/μ_k - z₀` as `ξΔt → ∞`) and out of its range. The paper's `ξ = 0.1/s` at
+/// `Δt = 0.01 s` is `x = 5e-4`.
+fn healing_weights(params: &FrictionParams, dt: f64) -> (f64, f64) {
+    let full = params.rstar_scale() * params.xi * dt;
+    let x = full * params.n.max(1.0) * params.kinetic_static_ratio();
+    if x <= 1.0 {
+        return (0.5 * full, 0.5 * full);
+    }
+    let decayed = (-x).exp();
+    let theta = (x - 1.0 + decayed) / (x * (1.0 - decayed));
+    ((1.0 - theta) * full, theta * full)
+}
+
 /// Solves the trapezoidal rule for the degree of structure (see the module documentation).
 /// `F(z)` is strictly increasing (`F' ≥ 1`), so the root is unique; if it lies outside
 /// `[1, μ_s/μ_k]` the step is too large for the rule and an error says so.
@@ -472,17 +497,17 @@ fn solve_structure(
 ) -> Result<Structure, FrictionError> {
     let gamma = params.rstar_scale();
     let decay_weight = 0.5 * gamma * params.kappa * plastic_increment;
-    let heal_weight = 0.5 * gamma * params.xi * dt;
+    let (heal_start, heal_end) = healing_weights(params, dt);
     if params.m == 1.0 && params.n == 1.0 && z0.is_finite() {
         // The paper's exponents make F linear in z inside [1, μ_s/μ_k]:
         // F(z) = (1 + w_d + w_h a) z - (fixed + w_d + w_h). A root inside the range is returned
         // here, after one Newton correction that polishes the rounding; anything else takes
         // the general path below, which tells a bound reached from a step too large.
         let a = params.kinetic_static_ratio();
-        let fixed = z0 - decay_weight * (z0 - 1.0) + heal_weight * (1.0 - a * z0);
-        let slope = 1.0 + decay_weight + heal_weight * a;
+        let fixed = z0 - decay_weight * (z0 - 1.0) + heal_start * (1.0 - a * z0);
+        let slope = 1.0 + decay_weight + heal_end * a;
         let inverse_slope = 1.0 / slope;
-        let constant = fixed + decay_weight + heal_weight;
+        let constant = fixed + decay_weight + heal_end;
         let z = constant * inverse_slope;
         if z >= 1.0 && z * a <= 1.0 {
             let polished = z - (slope * z - constant) * inverse_slope;
@@ -497,9 +522,9 @@ fn solve_structure(
             return Ok(Structure { value: z, d_plastic });
         }
     }
-    let fixed = z0 - decay_weight * decay(params, z0) + heal_weight * healing(params, z0);
-    let f = |z: f64| z - fixed + decay_weight * decay(params, z) - heal_weight * healing(params, z);
-    let df = |z: f64| 1.0 + decay_weight * decay_slope(params, z) - heal_weight * healing_slope(params, z);
+    let fixed = z0 - decay_weight * decay(params, z0) + heal_start * healing(params, z0);
+    let f = |z: f64| z - fixed + decay_weight * decay(params, z) - heal_end * healing(params, z);
+    let df = |z: f64| 1.0 + decay_weight * decay_slope(params, z) - heal_end * healing_slope(params, z);
     let min = 1.0;
     let max = 1.0 / params.kinetic_static_ratio();
     let out_of_range =
@@ -563,4 +588,51 @@ fn newton_structure(f: &impl Fn(f64) -> f64, df: &impl Fn(f64) -> f64, start: f6
         }
     }
     z
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The paper's constants with healing `xi`.
+    fn params(xi: f64) -> FrictionParams {
+        FrictionParams { xi, ..FrictionParams::paper() }
+    }
+
+    #[test]
+    fn stiff_healing_relaxes_to_the_bound_as_the_exact_solution_does() {
+        // Without slip and with n = 1, eq. (4) is dz/dt = γξ(1 - a z): z(t) = 1/a - (1/a - z₀) e^{-γξat}.
+        // Above x = γξaΔt = 1 the step is that solution; below, the trapezoidal rule, within
+        // x³/12 of it; at every ξ up to 1e12/s the step stays inside [z₀, μ_s/μ_k].
+        let (z0, dt) = (1.2, 0.01);
+        for xi in [1e-3, 0.1, 10.0, 100.0, 199.0, 201.0, 1e3, 1e4, 1e6, 1e8, 1e12] {
+            let p = params(xi);
+            let (a, max) = (p.kinetic_static_ratio(), p.max_structure());
+            let z = solve_structure(&p, z0, 0.0, dt).unwrap().value;
+            let x = p.rstar_scale() * xi * a * dt;
+            let exact = max - (max - z0) * (-x).exp();
+            assert!((z0..=max).contains(&z), "ξ = {xi}: 1/R* = {z} leaves [{z0}, {max}]");
+            let allowed = if x <= 1.0 { (max - z0) * x.powi(3) / 12.0 + 1e-15 } else { 4.0 * f64::EPSILON * max };
+            assert!((z - exact).abs() <= allowed, "ξ = {xi} (x = {x}): {z} against the exact {exact}");
+        }
+    }
+
+    #[test]
+    fn stiff_healing_with_slip_stays_in_range() {
+        // Decay and healing together, through the general path (m = 2, n = 0.5 and 2) and the
+        // linear one, at healing from the paper's to 1e10/s and slips up to 1 mm in one step.
+        // (A slip whose decay the trapezoidal rule overshoots, 1 m here, is refused with an
+        // error that asks for a smaller step, which the integrators take.)
+        for (m, n) in [(1.0, 1.0), (2.0, 0.5), (0.5, 2.0), (2.0, 2.0)] {
+            for xi in [0.1, 1e3, 1e6, 1e10] {
+                for slip in [0.0, 1e-6, 1e-3] {
+                    for z0 in [1.0, 1.5, 2.0] {
+                        let p = FrictionParams { m, n, ..params(xi) };
+                        let z = solve_structure(&p, z0, slip, 0.01).unwrap().value;
+                        assert!((1.0..=p.max_structure()).contains(&z), "m {m} n {n} ξ {xi} Δp {slip} z₀ {z0}: {z}");
+                    }
+                }
+            }
+        }
+    }
 }
