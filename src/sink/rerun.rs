@@ -339,12 +339,7 @@ pub fn open_stream(
                 format!("--connect {url}: not a Rerun viewer URL ({e}); e.g. rerun+http://127.0.0.1:9876/proxy")
             })?;
             let address = format!("{}:{}", parsed.origin.host, parsed.origin.port);
-            let reachable = std::net::ToSocketAddrs::to_socket_addrs(&address).is_ok_and(|mut addrs| {
-                addrs.any(|a| std::net::TcpStream::connect_timeout(&a, std::time::Duration::from_secs(2)).is_ok())
-            });
-            if !reachable {
-                return Err(format!("no Rerun viewer is listening at {url} (start one with `rerun`, or use --spawn)"));
-            }
+            crate::sink::viewer::answers(&address).map_err(|e| format!("--connect {url}: {e}"))?;
             Some(DetachedViewer::connect(GrpcSink::new(parsed), url)?)
         }
     };

@@ -68,6 +68,37 @@ fn forward(grpc: &GrpcSink, incoming: &Receiver<Request>) {
     }
 }
 
+/// Whether a Rerun viewer (a gRPC server, HTTP/2 without TLS) answers at `address`: the TCP
+/// connection is made within 2 s, and the server's first frame, its SETTINGS, arrives within
+/// [`ANSWER_WAIT`] of the client's connection preface (RFC 9113 §3.4). Rerun's gRPC sink
+/// reports itself connected as soon as TCP is, so an endpoint that accepts connections and
+/// never speaks would otherwise take the whole run and show nothing.
+pub fn answers(address: &str) -> Result<(), String> {
+    use std::io::{Read, Write};
+    use std::net::{TcpStream, ToSocketAddrs};
+    const PREFACE: &[u8] = b"PRI * HTTP/2.0\r\n\r\nSM\r\n\r\n";
+    /// An empty SETTINGS frame: length 0, type 4, no flags, stream 0.
+    const SETTINGS: [u8; 9] = [0, 0, 0, 4, 0, 0, 0, 0, 0];
+    let addrs = address.to_socket_addrs().map_err(|e| format!("cannot resolve {address}: {e}"))?;
+    let mut stream = addrs
+        .filter_map(|a| TcpStream::connect_timeout(&a, Duration::from_secs(2)).ok())
+        .next()
+        .ok_or_else(|| "no Rerun viewer is listening there (start one with `rerun`, or use --spawn)".to_string())?;
+    let silent = || {
+        format!(
+            "the endpoint accepted the connection but did not answer as a Rerun viewer (no HTTP/2 settings within {} s)",
+            ANSWER_WAIT.as_secs()
+        )
+    };
+    stream.set_read_timeout(Some(ANSWER_WAIT)).map_err(|e| e.to_string())?;
+    stream.set_write_timeout(Some(ANSWER_WAIT)).map_err(|e| e.to_string())?;
+    stream.write_all(PREFACE).and_then(|()| stream.write_all(&SETTINGS)).map_err(|_| silent())?;
+    let mut header = [0u8; 9];
+    stream.read_exact(&mut header).map_err(|_| silent())?;
+    // The frame type is the header's fourth byte: the server's first frame must be SETTINGS.
+    if header[3] == 4 { Ok(()) } else { Err(silent()) }
+}
+
 /// How long a viewer that accepted the connection may take to answer it.
 const ANSWER_WAIT: Duration = Duration::from_secs(5);
 
