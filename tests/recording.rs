@@ -598,3 +598,34 @@ fn streaming_to_a_viewer_and_writing_the_file_work_together() {
     let (code, text) = check_cli(&out.join("paper_triangular.rrd"), None);
     assert_eq!(code, 0, "{text}");
 }
+
+#[test]
+fn a_value_changed_inside_a_readable_recording_fails_check() {
+    // One bit flipped at each of 2 000 positions spread over a recording. Every mutant that still
+    // decodes but whose series differ from the original's (a bit in a value, a step or a time,
+    // carried through the chunk's compression) must fail `check`: the series digests written
+    // with the run's ending tell damage from data.
+    let out = scratch("mutants");
+    let path = run_cli("spring_block", &["time.integrator=wilson", "time.t_end=20"], &out);
+    let bytes = std::fs::read(&path).unwrap();
+    let original = rrd::from_bytes(&bytes, "original").unwrap();
+    assert!(check(&original, &Expectations::default()).passed());
+    let (mut changed, mut passed_changed) = (0, Vec::new());
+    let positions = 2000.min(bytes.len());
+    for k in 0..positions {
+        let at = k * bytes.len() / positions;
+        let mut mutant = bytes.clone();
+        mutant[at] ^= 1 << (k % 8);
+        let Ok(recording) = rrd::from_bytes(&mutant, "mutant") else { continue };
+        if recording.series == original.series {
+            continue;
+        }
+        changed += 1;
+        if check(&recording, &Expectations::default()).passed() {
+            passed_changed.push(at);
+        }
+    }
+    println!("{changed} of {positions} mutants decode with changed series");
+    assert!(changed > 0, "no mutant changed a series: the test proves nothing");
+    assert!(passed_changed.is_empty(), "mutants with changed series that pass check, at bytes {passed_changed:?}");
+}

@@ -14,6 +14,7 @@ use serde::Deserialize;
 
 use crate::frame::SceneKind;
 use crate::inspect::{Recording, Series};
+use crate::record::digest::SeriesDigest;
 use crate::record::schema::{self, RunEnding, RunInfo};
 
 /// Optional expectations (`--expect EXPECT.toml`).
@@ -139,6 +140,7 @@ pub fn check(recording: &Recording, expect: &Expectations) -> Report {
     }
     check_spatial(recording, &info, &mut report);
     if let Some(e) = &ending {
+        check_digests(recording, e, &mut report);
         check_events(recording, &info, e, expect, &mut report);
     }
     check_blueprint(recording, &mut report);
@@ -221,6 +223,25 @@ fn check_series<'r>(recording: &'r Recording, info: &'r RunInfo, report: &mut Re
         problems.push(format!("{} more series hold NaN or infinite values", non_finite - 5));
     }
     reference
+}
+
+/// Every series' rows against the digest written with them ([`SeriesDigest`]): a value, step
+/// or time changed inside a recording that still decodes is damage, not data.
+fn check_digests(recording: &Recording, ending: &RunEnding, report: &mut Report) {
+    let changed: Vec<&String> = ending
+        .digests
+        .iter()
+        .filter(|(path, digest)| {
+            recording.series.get(*path).is_some_and(|s| SeriesDigest::of(&s.steps, &s.times, &s.values) != **digest)
+        })
+        .map(|(path, _)| path)
+        .collect();
+    if let Some(first) = changed.first() {
+        report.problems.push(format!(
+            "the rows of {first}{} differ from the digest written with them: the recording is damaged",
+            if changed.len() > 1 { format!(" and {} more series", changed.len() - 1) } else { String::new() }
+        ));
+    }
 }
 
 /// `sim_time` rising with the step from 0 to the run's end, one row per step, as many rows as

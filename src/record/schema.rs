@@ -362,6 +362,10 @@ pub struct RunEnding {
     pub rows: u64,
     pub slip_events: usize,
     pub ruptures: usize,
+    /// The digest of every series as written ([`crate::record::digest`]), by entity path;
+    /// empty in MCAP logs (whose chunks carry CRCs) and in recordings from before digests.
+    #[serde(default, skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub digests: std::collections::BTreeMap<String, String>,
 }
 
 impl RunEnding {
@@ -370,6 +374,7 @@ impl RunEnding {
         last_time: f64,
         rows: u64,
         catalog: &crate::catalog::events::Catalog,
+        digests: std::collections::BTreeMap<String, String>,
     ) -> Self {
         Self {
             ending: ending.name().into(),
@@ -377,6 +382,7 @@ impl RunEnding {
             rows,
             slip_events: catalog.events.len(),
             ruptures: catalog.ruptures.len(),
+            digests,
         }
     }
 }

@@ -188,7 +188,7 @@ impl Sink for McapSink {
         for r in &catalog.ruptures {
             self.write(mcap_log::TOPIC_RUPTURES, r.onset, &proto::Rupture::from(r).encode_to_vec())?;
         }
-        let summary = RunEnding::new(ending, self.last_time, self.rows, catalog);
+        let summary = RunEnding::new(ending, self.last_time, self.rows, catalog, Default::default());
         let text = toml::to_string(&summary).map_err(|e| SinkError(format!("cannot describe the ending: {e}")))?;
         self.write(mcap_log::TOPIC_ENDING, self.last_time, &proto::Ending { ending: text }.encode_to_vec())?;
         // The summary and chunk indexes are written here; readers that seek need them.

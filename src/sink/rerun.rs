@@ -12,6 +12,7 @@ use crate::catalog::events::Catalog;
 use crate::frame::Ending;
 use crate::frame::{Frame, Layout, Needs, SceneKind};
 use crate::record::colormap::{POSITION, SLIP_RATE, sample};
+use crate::record::digest::SeriesDigest;
 use crate::record::schema::{self, Decimator, RecordingPlan, RunEnding, RunInfo, Source, selection, series_plan};
 use crate::sink::blueprint::default_blueprint;
 use crate::sink::geometry::{GeometryBuffer, SPACETIME_ROWS, spacetime_width};
@@ -32,6 +33,8 @@ pub struct RerunSink {
     steps: Vec<i64>,
     times: Vec<f64>,
     values: Vec<Vec<f64>>,
+    /// The digest of each series' rows so far ([`SeriesDigest`]).
+    digests: Vec<SeriesDigest>,
     rows: u64,
     geometry: GeometryBuffer,
     decimator: Decimator,
@@ -59,6 +62,7 @@ impl RerunSink {
             steps: Vec::new(),
             times: Vec::new(),
             values: Vec::new(),
+            digests: Vec::new(),
             rows: 0,
             geometry: GeometryBuffer::default(),
             last_time: 0.0,
@@ -75,8 +79,10 @@ impl RerunSink {
     fn write_row(&mut self, frame: &Frame) -> Result<(), SinkError> {
         self.steps.push(frame.step as i64);
         self.times.push(frame.time);
-        for ((_, source), values) in self.series.iter().zip(&mut self.values) {
-            values.push(source.of(frame));
+        for (((_, source), values), digest) in self.series.iter().zip(&mut self.values).zip(&mut self.digests) {
+            let value = source.of(frame);
+            values.push(value);
+            digest.add(frame.step as i64, frame.time, value);
         }
         self.rows += 1;
         self.last_time = frame.time;
@@ -237,6 +243,7 @@ impl Sink for RerunSink {
         // and a file cut early (an interrupted run, a full disk) would lack it.
         flush(rec)?;
         self.values = vec![Vec::with_capacity(ROWS_PER_CHUNK); plan.len()];
+        self.digests = vec![SeriesDigest::default(); plan.len()];
         self.series = plan.into_iter().map(|s| (s.path, s.source)).collect();
         self.spacetime = vec![0.0; SPACETIME_ROWS * layout.segments.len()];
         self.plan.spec.spatial = spatial;
@@ -262,7 +269,8 @@ impl Sink for RerunSink {
                 result = result.and(self.log_spacetime());
             }
             result = result.and(self.log_catalog(catalog));
-            let summary = RunEnding::new(ending, self.last_time, self.rows, catalog);
+            let digests = self.series.iter().zip(&self.digests).map(|((path, _), d)| (path.clone(), d.hex())).collect();
+            let summary = RunEnding::new(ending, self.last_time, self.rows, catalog, digests);
             let text = toml::to_string(&summary).map_err(|e| SinkError(format!("cannot describe the ending: {e}")))?;
             result = result.and(
                 self.rec()
