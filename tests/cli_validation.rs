@@ -270,7 +270,10 @@ fn viewer_options_are_checked_before_solving() {
         .unwrap();
     assert_eq!(output.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(stderr.contains("--connect rerun+http://127.0.0.1:9/proxy: no Rerun viewer is listening there"), "{stderr}");
+    assert!(
+        stderr.contains("--connect rerun+http://127.0.0.1:9/proxy: no Rerun viewer is listening there"),
+        "{stderr}"
+    );
     let output = binary()
         .args(["run", &case("spring_block.toml"), "--quiet", "--connect", "http:/nonsense", "--out-dir"])
         .arg(&out)

@@ -49,3 +49,32 @@ fn mcap_reading_regressions() {
 fn rrd_reading_regressions() {
     replay("rrd_read", slipfront::fuzzing::rrd_read);
 }
+
+#[test]
+fn decoder_aborts_are_reported_as_damage() {
+    // Inputs under `fuzz/regressions/rrd_check/` end any process that decodes them: an Arrow
+    // message inside declares a body of 8.2e18 bytes (`crash-*`), or a large satisfiable one that
+    // ran for minutes in over 4 GB (`oom-*`), which `arrow-ipc` allocates before reading. The
+    // binary's `check` and `figures` decode a recording first in a child under a cap on its
+    // address space (`slipfront::cli::isolated`): each must end within seconds with exit 1 and
+    // the damage named, never by a signal.
+    let inputs = inputs("rrd_check");
+    assert!(!inputs.is_empty(), "fuzz/regressions/rrd_check holds inputs");
+    let out = std::env::temp_dir().join(format!("slipfront-rrd-check-{}", std::process::id()));
+    for (path, _) in &inputs {
+        for args in [vec!["check"], vec!["figures", "--out", out.to_str().unwrap()]] {
+            let started = std::time::Instant::now();
+            let output = std::process::Command::new(env!("CARGO_BIN_EXE_slipfront"))
+                .args(&args[..1])
+                .arg(path)
+                .args(&args[1..])
+                .output()
+                .unwrap();
+            let text =
+                format!("{}{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
+            assert_eq!(output.status.code(), Some(1), "{args:?} {}: {text}", path.display());
+            assert!(text.contains("the file is damaged"), "{args:?} {}: {text}", path.display());
+            assert!(started.elapsed().as_secs() < 30, "{args:?} {} took {:?}", path.display(), started.elapsed());
+        }
+    }
+}

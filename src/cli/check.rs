@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use clap::Args;
 
 use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, fail, print};
+use crate::cli::isolated;
 use crate::inspect;
 use crate::inspect::check::{Expectations, check};
 use crate::study::replay;
@@ -50,6 +51,13 @@ pub fn command(args: CheckArgs) -> ExitCode {
         }
         report
     } else {
+        if let Some(failure) = isolated::decoder_failure(&args.recording) {
+            let report = inspect::check::Report { problems: vec![failure], ..Default::default() };
+            return match print(&report.render()) {
+                Ok(()) => ExitCode::from(EXIT_FAILED),
+                Err(exit) => exit,
+            };
+        }
         match inspect::rrd::read(&args.recording) {
             Ok(recording) => check(&recording, &expect),
             Err(e) => return fail(EXIT_INVALID, e),

@@ -20,6 +20,9 @@ pub struct FiguresArgs {
 
 /// Runs `slipfront figures`.
 pub fn command(args: FiguresArgs) -> ExitCode {
+    if let Some(failure) = crate::cli::isolated::decoder_failure(&args.recording) {
+        return fail(EXIT_FAILED, format!("{failure}; no figures drawn"));
+    }
     let recording = match inspect::rrd::read(&args.recording) {
         Ok(r) => r,
         Err(e) => return fail(EXIT_INVALID, e),

@@ -3,6 +3,7 @@
 pub mod check;
 pub mod common;
 pub mod figures;
+pub mod isolated;
 pub mod outputs;
 pub mod replay;
 pub mod run;
@@ -51,6 +52,9 @@ pub enum Command {
     /// otherwise. Exit codes: 0 replayed, 1 the log is damaged (what could be recovered was
     /// replayed), 2 unreadable or invalid arguments.
     Replay(ReplayArgs),
+    /// Decode a recording and exit 0 (the child process of `check` and `figures`).
+    #[command(name = "__decode-rrd", hide = true)]
+    DecodeRrd { recording: std::path::PathBuf },
 }
 
 /// Runs the command line and returns the process exit code.
@@ -60,5 +64,6 @@ pub fn main_with(cli: Cli) -> ExitCode {
         Command::Check(args) => check::command(args),
         Command::Figures(args) => figures::command(args),
         Command::Replay(args) => replay::command(args),
+        Command::DecodeRrd { recording } => isolated::decode_in_child(&recording),
     }
 }
