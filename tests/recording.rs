@@ -629,3 +629,31 @@ fn a_value_changed_inside_a_readable_recording_fails_check() {
     assert!(changed > 0, "no mutant changed a series: the test proves nothing");
     assert!(passed_changed.is_empty(), "mutants with changed series that pass check, at bytes {passed_changed:?}");
 }
+
+#[test]
+fn a_killed_run_leaves_its_recording_as_far_as_its_log() {
+    // SIGKILL, which no handler sees (the out-of-memory killer, a batch system's time limit):
+    // both files hand what they buffer to the disk at least every second and every 512 rows
+    // (`slipfront::sink::cadence`), so the recording reads back as far as the MCAP log, within
+    // that cadence. With chunks of 4 096 rows, a run of Wilson's method killed after 5 s left its
+    // recording at 1 395 s of simulated time while its log held 1 726 s.
+    use std::os::unix::process::CommandExt;
+    let out = scratch("killed");
+    let log = out.join("log.mcap");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_slipfront"))
+        .args(["run", &case_path("paper_triangular"), "--quiet", "--set", "time.integrator=wilson"])
+        .args(["--set", "time.t_end=100000", "--mcap", log.to_str().unwrap(), "--out-dir"])
+        .arg(&out)
+        .process_group(0)
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_secs(4));
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let recording = rrd::read(&out.join("paper_triangular.rrd")).unwrap();
+    let rows = recording.series["contact/friction_force"].steps.len();
+    let logged = slipfront::inspect::mcap::read(&log).unwrap().frames.len();
+    println!("killed after 4 s: {rows} rows in the recording, {logged} in the log");
+    assert!(rows > 1 && logged > 1, "rows: recording {rows}, log {logged}");
+    assert!(rows + 1024 >= logged, "the recording holds {rows} rows, the log {logged}");
+}

@@ -18,6 +18,7 @@ use crate::frame::{Frame, Layout, Needs};
 use crate::record::mcap::{self as mcap_log, LogHeader, nanos};
 use crate::record::proto;
 use crate::record::schema::{Decimator, RecordingPlan, RunEnding, selection};
+use crate::sink::cadence::Cadence;
 use crate::sink::{Sink, SinkError};
 
 /// Writes a slipfront MCAP log.
@@ -31,6 +32,8 @@ pub struct McapSink {
     nodes: Vec<usize>,
     mesh: bool,
     rows: u64,
+    /// When the open chunk is finished and written ([`Cadence`]).
+    cadence: Cadence,
     last_time: f64,
     needs: Needs,
 }
@@ -55,6 +58,7 @@ impl McapSink {
             nodes: Vec::new(),
             mesh: false,
             rows: 0,
+            cadence: Cadence::default(),
             last_time: 0.0,
             needs,
         })
@@ -137,6 +141,11 @@ impl McapSink {
         self.write(mcap_log::TOPIC_TOTALS, frame.time, &totals.encode_to_vec())?;
         self.rows += 1;
         self.last_time = frame.time;
+        if self.cadence.row() {
+            // Ends the chunk and hands it to the disk: a killed run's log is readable to here.
+            let writer = self.writer.as_mut().expect("checked by write");
+            writer.flush().map_err(|e| self.abandon("cannot write", e))?;
+        }
         Ok(())
     }
 }

@@ -3,6 +3,7 @@
 //! whether the run completed, failed or was interrupted.
 
 pub mod blueprint;
+pub mod cadence;
 pub mod catalog;
 pub mod geometry;
 pub mod mcap;

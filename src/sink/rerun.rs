@@ -3,7 +3,8 @@
 //! view of slip rate, the catalog as text logs, and a default blueprint ([`crate::sink::blueprint`]).
 //!
 //! Time series are buffered and sent as columns (`send_columns` bypasses Rerun's batcher, so
-//! many steps go as one chunk); geometry is logged row by row on recorded steps. While no
+//! many steps go as one chunk), at least every second and every 512 rows
+//! ([`crate::sink::cadence`]); geometry is logged row by row on recorded steps. While no
 //! segment slips only every `stick_every`-th step is recorded.
 
 use rerun::{RecordingStream, Scalars, SeriesLines, TimeColumn};
@@ -15,12 +16,11 @@ use crate::record::colormap::{POSITION, SLIP_RATE, sample};
 use crate::record::digest::SeriesDigest;
 use crate::record::schema::{self, Decimator, RecordingPlan, RunEnding, RunInfo, Source, selection, series_plan};
 use crate::sink::blueprint::default_blueprint;
+use crate::sink::cadence::{self, Cadence};
 use crate::sink::geometry::{GeometryBuffer, SPACETIME_ROWS, spacetime_width};
 use crate::sink::viewer::DetachedViewer;
 use crate::sink::{Sink, SinkError};
 
-/// Rows buffered per series before they are sent as one chunk.
-const ROWS_PER_CHUNK: usize = 4096;
 /// Geometry points buffered before every buffer is sent (large meshes flush sooner).
 const GEOMETRY_POINTS_PER_CHUNK: usize = 2_000_000;
 
@@ -35,6 +35,8 @@ pub struct RerunSink {
     values: Vec<Vec<f64>>,
     /// The digest of each series' rows so far ([`SeriesDigest`]).
     digests: Vec<SeriesDigest>,
+    /// When the buffered rows go to the file ([`Cadence`]).
+    cadence: Cadence,
     rows: u64,
     geometry: GeometryBuffer,
     decimator: Decimator,
@@ -63,6 +65,7 @@ impl RerunSink {
             times: Vec::new(),
             values: Vec::new(),
             digests: Vec::new(),
+            cadence: Cadence::default(),
             rows: 0,
             geometry: GeometryBuffer::default(),
             last_time: 0.0,
@@ -97,8 +100,10 @@ impl RerunSink {
             let layout = self.layout.as_ref().expect("begin() ran");
             self.geometry.push(frame, layout, &self.plan);
         }
-        if self.steps.len() >= ROWS_PER_CHUNK || self.geometry.points() >= GEOMETRY_POINTS_PER_CHUNK {
+        if self.cadence.row() || self.geometry.points() >= GEOMETRY_POINTS_PER_CHUNK {
             self.flush_columns()?;
+            // Hand the file sink's buffer to the disk too, without waiting for a viewer.
+            self.rec().flush_async().map_err(rerun_error)?;
         }
         Ok(())
     }
@@ -242,7 +247,7 @@ impl Sink for RerunSink {
         // flush here, a fast run's first columns can reach the file before the run description,
         // and a file cut early (an interrupted run, a full disk) would lack it.
         flush(rec)?;
-        self.values = vec![Vec::with_capacity(ROWS_PER_CHUNK); plan.len()];
+        self.values = vec![Vec::with_capacity(cadence::ROWS); plan.len()];
         self.digests = vec![SeriesDigest::default(); plan.len()];
         self.series = plan.into_iter().map(|s| (s.path, s.source)).collect();
         self.spacetime = vec![0.0; SPACETIME_ROWS * layout.segments.len()];
