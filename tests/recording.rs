@@ -124,7 +124,7 @@ impl Sink for Frames {
 /// Runs `case` through a Rerun sink and a frame collector in the same run.
 fn run_recorded(case: &Case, path: &Path) -> (Vec<Frame>, Catalog) {
     let mut scene = scene::build(case).unwrap();
-    let stream = open_stream(Some(path), &Viewer::None, "test").unwrap().unwrap();
+    let stream = open_stream(Some(path), &Viewer::None, "test", None).unwrap().unwrap();
     let plan = RecordingPlan::for_case("test", case);
     let frames = Frames::default();
     let collected = frames.0.clone();
@@ -344,7 +344,7 @@ fn check_catches_a_missing_entity() {
 fn check_catches_a_nan() {
     let out = scratch("nan");
     let path = out.join("nan.rrd");
-    let stream = open_stream(Some(&path), &Viewer::None, "nan").unwrap().unwrap();
+    let stream = open_stream(Some(&path), &Viewer::None, "nan", None).unwrap().unwrap();
     let plan = RecordingPlan {
         case: "nan".into(),
         t_end: 1.0,
@@ -352,6 +352,7 @@ fn check_catches_a_nan() {
         steps: 10,
         integrator: Default::default(),
         tolerance: None,
+        recording_id: None,
         chosen_because: None,
         accuracy: None,
         slip_rate_threshold: 0.01,
@@ -665,4 +666,41 @@ fn a_killed_run_leaves_its_recording_as_far_as_its_log() {
     println!("killed after 4 s: {rows} rows in the recording, {logged} in the log");
     assert!(rows > 1 && logged > 1, "rows: recording {rows}, log {logged}");
     assert!(rows + 1024 >= logged, "the recording holds {rows} rows, the log {logged}");
+}
+
+#[test]
+fn every_distinct_run_has_its_own_deterministic_recording_id() {
+    // A Rerun server merges recordings that share an id into one dataset segment: two runs of
+    // the same case must share it, any two that differ in a value must not, and a replayed MCAP
+    // log is the run it logged.
+    let out = scratch("ids");
+    let id = |sets: &[&str], dir: &str| {
+        let dir = out.join(dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        rrd::read(&run_cli("spring_block", sets, &dir)).unwrap().recording_id.expect("a recording id")
+    };
+    let first = id(&["time.t_end=5"], "a");
+    assert_eq!(first, id(&["time.t_end=5"], "b"), "the same run twice");
+    assert!(first.starts_with("spring_block-"), "{first}");
+    assert_ne!(first, id(&["time.t_end=5", "friction.structure0=1.999999999"], "c"), "another 1/R*");
+    assert_ne!(first, id(&["time.t_end=5.000000001"], "d"), "another t_end");
+    let log = out.join("log.mcap");
+    let status = Command::new(env!("CARGO_BIN_EXE_slipfront"))
+        .args(["run", &case_path("spring_block"), "--quiet", "--no-rrd", "--set", "time.t_end=5", "--mcap"])
+        .arg(&log)
+        .arg("--out-dir")
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let replayed = out.join("replayed.rrd");
+    let status = Command::new(env!("CARGO_BIN_EXE_slipfront"))
+        .arg("replay")
+        .arg(&log)
+        .arg("--rrd")
+        .arg(&replayed)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    assert_eq!(rrd::read(&replayed).unwrap().recording_id.as_deref(), Some(first.as_str()), "the replay");
 }

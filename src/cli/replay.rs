@@ -68,7 +68,9 @@ pub fn command(args: ReplayArgs) -> ExitCode {
         Ok(locks) => locks,
         Err(e) => return fail(EXIT_INVALID, e),
     };
-    let stream = match open_stream(rrd.as_deref(), &viewer, &log.header.plan.case) {
+    // The live run's recording id, so that the replayed recording is the same run to Rerun.
+    let plan = &log.header.plan;
+    let stream = match open_stream(rrd.as_deref(), &viewer, &plan.case, plan.recording_id.as_deref()) {
         Ok(Some(stream)) => stream,
         Ok(None) => return fail(EXIT_INVALID, "nothing to replay into"),
         Err(e) => return fail(EXIT_INVALID, e),

@@ -115,9 +115,9 @@ fn prepare(args: &RunArgs) -> Result<(case::Case, Outputs), ExitCode> {
 impl Outputs {
     /// The catalog's CSV writer, the MCAP log and the Rerun recording, as the arguments ask.
     fn sinks(&self, args: &RunArgs, case: &case::Case) -> Result<Vec<Box<dyn Sink>>, ExitCode> {
-        let stream =
-            open_stream(self.rrd.as_deref(), &args.viewer.viewer(), &self.stem).map_err(|e| fail(EXIT_INVALID, e))?;
         let plan = RecordingPlan::for_case(&self.stem, case);
+        let stream = open_stream(self.rrd.as_deref(), &args.viewer.viewer(), &self.stem, plan.recording_id.as_deref())
+            .map_err(|e| fail(EXIT_INVALID, e))?;
         let mut sinks: Vec<Box<dyn Sink>> =
             vec![Box::new(CatalogSink::new(self.events.clone(), Some(self.ruptures.clone())))];
         if let Some(path) = &args.mcap {

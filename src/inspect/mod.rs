@@ -12,6 +12,8 @@ use std::fmt;
 /// A recording as read back: what `check` and the tests judge.
 #[derive(Debug, Clone, Default)]
 pub struct Recording {
+    /// The recording id of its data (not its blueprint), if any data was read.
+    pub recording_id: Option<String>,
     /// Scalar time series by entity path (without a leading `/`), sorted by step.
     pub series: BTreeMap<String, Series>,
     /// Every entity path with data in the recording store.

@@ -173,6 +173,7 @@ pub fn from_messages(messages: impl Iterator<Item = Result<LogMsg, String>>) -> 
             recording.blueprint_messages += 1;
             read_view(&chunk, &names, &mut views);
         } else {
+            recording.recording_id.get_or_insert_with(|| store.recording_id().as_str().to_string());
             read_data(&chunk, &names, &mut recording);
         }
     }

@@ -64,6 +64,9 @@ pub struct RecordingPlan {
     /// The adaptive steps' tolerance, if steps are adaptive (`time.tolerance`, or Tsit5's default).
     #[serde(default)]
     pub tolerance: Option<f64>,
+    /// The Rerun recording id ([`recording_id`]); `None` in logs from before it was stored.
+    #[serde(default)]
+    pub recording_id: Option<String>,
     /// Why `time.integrator = "auto"` chose [`Self::integrator`]; `None` where the case named it.
     #[serde(default)]
     pub chosen_because: Option<String>,
@@ -84,6 +87,7 @@ impl RecordingPlan {
             steps: case.time.steps(),
             integrator: case.time.method,
             tolerance: case.time.adaptive_tolerance(),
+            recording_id: Some(recording_id(name, case)),
             chosen_because: case.time.chosen_because.clone(),
             accuracy: case.time.accuracy,
             slip_rate_threshold: case.slip_rate_threshold(),
@@ -96,6 +100,17 @@ impl RecordingPlan {
     pub fn stepping(&self) -> String {
         stepping(self.integrator, self.tolerance, self.steps, self.dt, &self.chosen_because, self.accuracy)
     }
+}
+
+/// The recording id of a run of `case` named `name`: the name and an `xxh32` of the slipfront
+/// version and every value of the case as resolved (its `Debug` form, floats in their shortest
+/// round-trip digits). It is the same for every run of the same case and version, and differs
+/// between any two runs that differ in a value (an override, an ensemble member's `1/R*`), so
+/// that a Rerun server, which merges recordings of one id into one dataset segment, merges only
+/// copies of the same run.
+pub fn recording_id(name: &str, case: &Case) -> String {
+    let text = format!("slipfront {} {case:?}", env!("CARGO_PKG_VERSION"));
+    format!("{name}-{:08x}", xxhash_rust::xxh32::xxh32(text.as_bytes(), 0))
 }
 
 /// [`Method::describe`], with `time.accuracy` where it set the step or tolerance, and the reason

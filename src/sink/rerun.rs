@@ -323,12 +323,14 @@ pub enum Viewer {
 }
 
 /// Opens a recording stream writing to `file` and/or a viewer; `None` if neither is asked for.
-/// A viewer that cannot be reached is an error here, before the run: a stream to an
-/// unreachable viewer would block the file once its queue filled.
+/// `id` is the recording id ([`schema::recording_id`]); `None` lets Rerun draw a random one. A
+/// viewer that cannot be reached is an error here, before the run: a stream to an unreachable
+/// viewer would block the file once its queue filled.
 pub fn open_stream(
     file: Option<&std::path::Path>,
     viewer: &Viewer,
     name: &str,
+    id: Option<&str>,
 ) -> Result<Option<RecordingStream>, String> {
     use rerun::sink::{FileSink, GrpcSink, LogSink};
     let uri: Option<String> = match viewer {
@@ -356,7 +358,10 @@ pub fn open_stream(
             Some(DetachedViewer::connect(GrpcSink::new(parsed), url)?)
         }
     };
-    let builder = rerun::RecordingStreamBuilder::new(schema::APP_ID).recording_name(name).enabled(true);
+    let mut builder = rerun::RecordingStreamBuilder::new(schema::APP_ID).recording_name(name).enabled(true);
+    if let Some(id) = id {
+        builder = builder.recording_id(id);
+    }
     let stream = match (file, grpc) {
         (None, None) => return Ok(None),
         (Some(path), None) => builder.save(path),
