@@ -62,32 +62,50 @@ fn the_schema_is_pinned() {
     let mut expected: Vec<String> = Vec::new();
     for k in 0..10 {
         for q in ["traction_t", "traction_n", "R", "R_star", "structure", "slip_rate", "slip"] {
-            expected.push(format!("contact/segments/{k}/{q}"));
+            expected.push(format!("contact/{q}[{k}]"));
         }
     }
     for j in 0..=10 {
-        expected.push(format!("body/nodes/{j}/u_x"));
-        expected.push(format!("body/nodes/{j}/u_y"));
+        expected.push(format!("body/u_x[{j}]"));
+        expected.push(format!("body/u_y[{j}]"));
     }
     expected.extend(["contact/friction_force", "base/u_x"].map(String::from));
     let series: Vec<String> = block.series.keys().cloned().collect();
     let mut sorted = expected.clone();
     sorted.sort();
     assert_eq!(series, sorted, "block series");
-    for entity in [
-        "spatial/mesh",
-        "spatial/contact",
-        "spatial/base",
-        "spacetime/slip_rate",
-        "spacetime/now",
-        "slipfront/run",
+    let mut entities: Vec<String> = [
+        "__properties/case",
+        "__properties/run",
+        "base/u_x",
+        "body/u_x",
+        "body/u_y",
+        "contact/friction_force",
+        "contact/state",
+        "profile/kinetic_strength",
+        "profile/slip_rate",
+        "profile/static_strength",
+        "profile/structure",
+        "profile/traction_t",
         "slipfront/ending",
-    ] {
-        assert!(block.entities.contains(entity), "block recording lacks {entity}");
-    }
+        "slipfront/run",
+        "spacetime/axes",
+        "spacetime/now",
+        "spacetime/slip_rate",
+        "spatial/base",
+        "spatial/contact",
+        "spatial/mesh",
+    ]
+    .map(String::from)
+    .to_vec();
+    entities.extend(Quantity::ALL.map(|q| format!("contact/{}", q.name())));
+    entities.sort();
+    // One entity per quantity, not per segment: the viewer slows with hundreds of entities.
+    assert_eq!(block.entities.iter().cloned().collect::<Vec<_>>(), entities, "block entities");
     // Series names and colours are static.
     let spring = rrd::read(&run_cli("spring_block", &["time.integrator=wilson", "time.t_end=20"], &out)).unwrap();
-    let mut expected: Vec<String> = Quantity::ALL.iter().map(|q| schema::segment_entity(0, *q)).collect();
+    let mut expected: Vec<String> =
+        Quantity::ALL.iter().map(|q| schema::instance_series(&schema::segment_entity(*q), 0)).collect();
     expected.extend(["contact/friction_force", "base/u_x", "block/x", "block/v"].map(String::from));
     expected.sort();
     assert_eq!(spring.series.keys().cloned().collect::<Vec<_>>(), expected, "spring-block series");
@@ -146,15 +164,17 @@ fn value_of(entity: &str, frame: &Frame) -> f64 {
         "block/x" => frame.block.unwrap()[0],
         "block/v" => frame.block.unwrap()[1],
         _ => {
-            let parts: Vec<&str> = entity.split('/').collect();
-            let index: usize = parts[2].parse().unwrap();
-            match parts[1] {
-                "segments" => {
-                    let q = Quantity::ALL.iter().find(|q| q.name() == parts[3]).unwrap();
+            // `contact/{quantity}[k]` or `body/u_x[j]`: every segment and node is recorded here.
+            let (path, index) = entity.trim_end_matches(']').split_once('[').unwrap();
+            let index: usize = index.parse().unwrap();
+            match path {
+                "body/u_x" => frame.surface_nodes[index][0],
+                "body/u_y" => frame.surface_nodes[index][1],
+                _ => {
+                    let name = path.strip_prefix("contact/").unwrap();
+                    let q = Quantity::ALL.iter().find(|q| q.name() == name).unwrap();
                     q.of(&frame.segments[index])
                 }
-                "nodes" => frame.surface_nodes[index][if parts[3] == "u_x" { 0 } else { 1 }],
-                other => panic!("unknown {other}"),
             }
         }
     }
@@ -193,7 +213,7 @@ fn recorded_values_equal_the_run_and_the_official_sdk_reads_them() {
     assert!(rows.windows(2).all(|w| w[1] - w[0] <= 50), "a stick gap longer than 50 steps");
 
     // The official Python SDK, an independent reader.
-    let entities = ["contact/friction_force", "block/x", "contact/segments/0/structure", "contact/segments/0/R"];
+    let entities = ["contact/friction_force", "block/x", "contact/structure[0]", "contact/R[0]"];
     let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/python/read_recording.py");
     let Some(output) = official_python(script, &path, &entities) else { return };
     let mut lines = 0;
@@ -261,12 +281,12 @@ fn check_passes_a_fresh_recording_and_its_expectations() {
     let expect = out.join("expect.toml");
     std::fs::write(
         &expect,
-        "[events]\nslip_events = [1, 100]\nruptures = [1, 10]\n\n[[at]]\nentity = \"contact/segments/0/structure\"\ntime = 300.0\nmin = 1.0\nmax = 2.0\n",
+        "[events]\nslip_events = [1, 100]\nruptures = [1, 10]\n\n[[at]]\nentity = \"contact/structure\"\nsegment = 0\ntime = 300.0\nmin = 1.0\nmax = 2.0\n",
     )
     .unwrap();
     let (code, text) = check_cli(&path, Some(&expect));
     assert_eq!(code, 0, "{text}");
-    assert!(text.contains("PASS") && text.contains("contact/segments/0/structure = "), "{text}");
+    assert!(text.contains("PASS") && text.contains("contact/structure[0] = "), "{text}");
     // An expectation that does not hold is a mismatch (exit 1).
     std::fs::write(&expect, "[[at]]\nentity = \"contact/friction_force\"\ntime = 300.0\nmax = 0.0\n").unwrap();
     let (code, text) = check_cli(&path, Some(&expect));
@@ -330,10 +350,10 @@ fn check_catches_a_missing_entity() {
     let out = scratch("missing");
     let path = run_cli("paper_triangular", &["time.t_end=50"], &out);
     let damaged = out.join("missing.rrd");
-    without_entity(&path, &damaged, "contact/segments/3/slip");
+    without_entity(&path, &damaged, "contact/slip");
     let (code, text) = check_cli(&damaged, None);
     assert_eq!(code, 1, "{text}");
-    assert!(text.contains("FAIL: missing series contact/segments/3/slip"), "{text}");
+    assert!(text.contains("FAIL: missing series contact/slip[3]"), "{text}");
     without_entity(&path, &damaged, "spatial/contact");
     let (code, text) = check_cli(&damaged, None);
     assert_eq!(code, 1, "{text}");
@@ -356,6 +376,9 @@ fn check_catches_a_nan() {
         chosen_because: None,
         accuracy: None,
         slip_rate_threshold: 0.01,
+        mu_k: None,
+        parameters: Default::default(),
+        overrides: Vec::new(),
         spec: slipfront::case::RecordSpec { stick_every: 1, ..Default::default() },
     };
     let mut sink = RerunSink::new(stream, plan);
@@ -381,7 +404,7 @@ fn check_catches_a_nan() {
     let recording: Recording = rrd::read(&path).unwrap();
     let report = check(&recording, &Expectations::default());
     assert!(
-        report.problems.iter().any(|p| p.contains("contact/segments/0/structure = NaN at step 7")),
+        report.problems.iter().any(|p| p.contains("contact/structure[0] = NaN at step 7")),
         "{:?}",
         report.problems
     );
@@ -410,32 +433,45 @@ fn check_catches_a_truncated_file_and_refuses_a_non_recording() {
 
 #[test]
 fn the_blueprint_is_stored_with_its_views() {
+    use slipfront::sink::blueprint::*;
     let out = scratch("blueprint");
     let recording = rrd::read(&run_cli("paper_triangular", &["time.t_end=20"], &out)).unwrap();
     let view = |name: &str| {
         recording
             .views
             .iter()
-            .find(|v| v.name == name)
+            .find(|v| v.name.starts_with(name))
             .unwrap_or_else(|| panic!("no view {name}: {:?}", recording.views))
     };
-    let block = view("Block");
+    let block = view(VIEW_BLOCK);
     assert_eq!((block.class.as_str(), block.origin.as_str()), ("2D", "/spatial"));
-    let spacetime = view("Space-time: slip rate");
+    let spacetime = view(VIEW_SPACETIME);
     assert_eq!((spacetime.class.as_str(), spacetime.origin.as_str()), ("2D", "/spacetime"));
-    // The probes of the paper case: segments A-F = 0, 2, 4, 5, 7, 9, nodes 1-6 = 0, 2, ..., 10.
-    let traction = view("Tangential traction f_t (Pa)");
+    let lanes = view(VIEW_STATE);
+    assert_eq!(
+        (lanes.class.as_str(), lanes.contents.as_slice()),
+        ("StateTimeline", &["/contact/state".to_string()][..])
+    );
+    let strength = view(VIEW_STRENGTH);
+    assert_eq!(strength.class, "BarChart");
+    assert_eq!(
+        strength.contents,
+        ["/profile/static_strength", "/profile/kinetic_strength", "/profile/traction_t"].map(String::from)
+    );
+    // The probe plots: one entity per quantity (the probes A-F are picked in the blueprint),
+    // the whole run on the time axis, and no legend over the data.
+    let traction = view(VIEW_TRACTION);
     assert_eq!(traction.class, "TimeSeries");
-    assert_eq!(traction.contents, [0, 2, 4, 5, 7, 9].map(|k| format!("contact/segments/{k}/traction_t")));
-    let structure = view("Degree of structure 1/R*");
-    assert_eq!(structure.contents, [0, 2, 4, 5, 7, 9].map(|k| format!("contact/segments/{k}/structure")));
-    let displacement = view("Displacement u_x (m)");
-    let mut nodes: Vec<String> = [0, 2, 4, 6, 8, 10].iter().map(|j| format!("body/nodes/{j}/u_x")).collect();
-    nodes.push("base/u_x".into());
-    assert_eq!(displacement.contents, nodes);
-    let events = view("Slip events");
+    assert!(traction.name.contains("at A to F"), "{}", traction.name);
+    assert_eq!(traction.contents, ["/contact/traction_t".to_string()]);
+    let mut properties = traction.properties.clone();
+    properties.sort();
+    assert_eq!(properties, ["PlotLegend", "TimeAxis"]);
+    assert_eq!(view(VIEW_STRUCTURE).contents, ["/contact/structure".to_string()]);
+    assert_eq!(view(VIEW_DISPLACEMENT).contents, ["/body/u_x", "/base/u_x"].map(String::from));
+    let events = view(VIEW_EVENTS);
     assert_eq!((events.class.as_str(), events.origin.as_str()), ("TextLog", "/events"));
-    assert_eq!(recording.views.len(), 6);
+    assert_eq!(recording.views.len(), 10);
 }
 
 #[test]
@@ -703,4 +739,17 @@ fn every_distinct_run_has_its_own_deterministic_recording_id() {
         .unwrap();
     assert!(status.success());
     assert_eq!(rrd::read(&replayed).unwrap().recording_id.as_deref(), Some(first.as_str()), "the replay");
+}
+
+#[test]
+fn check_names_the_layout_of_a_recording_from_an_older_slipfront() {
+    // A spring-block recording written by slipfront 0.1.0, one entity per segment and quantity.
+    let old = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/rrd_read/bad-old-layout.rrd");
+    let (code, text) = check_cli(&old, None);
+    assert_eq!(code, 1, "{text}");
+    assert!(
+        text.contains("lays its series out as \"entity per segment\" (written by slipfront 0.1.0)")
+            && text.contains("this slipfront reads \"instances\""),
+        "{text}"
+    );
 }

@@ -51,9 +51,10 @@ pub fn from_str(text: &str, overrides: &[String]) -> Result<Case, CaseError> {
         // Deserializing the text keeps line and column in the error message.
         deserialize(toml::Deserializer::parse(text).map_err(|e| CaseError::Parse(e.to_string()))?)?
     } else {
-        deserialize(table)?
+        deserialize(table.clone())?
     };
     let mut case = case;
+    case.source = spec::CaseSource { table, overrides: overrides.to_vec() };
     case.resolve();
     let mut violations = case.violations();
     if violations.is_empty() {

@@ -27,6 +27,24 @@ pub struct Case {
     /// What the Rerun recording holds.
     #[serde(default)]
     pub record: RecordSpec,
+    /// The case as written and overridden, for the recording's properties.
+    #[serde(skip)]
+    pub source: CaseSource,
+}
+
+/// A case as the user gave it: the TOML table after the overrides, and the overrides.
+#[derive(Clone, Default)]
+pub struct CaseSource {
+    pub table: toml::Table,
+    pub overrides: Vec<String>,
+}
+
+/// Left out of a case's `Debug` form, which names the run ([`crate::record::schema::recording_id`]):
+/// every value it holds is in the case's fields already.
+impl std::fmt::Debug for CaseSource {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("..")
+    }
 }
 
 /// `[time]`.

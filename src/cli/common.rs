@@ -51,3 +51,14 @@ pub(crate) fn print(text: &str) -> Result<(), ExitCode> {
         Err(e) => Err(fail(EXIT_FAILED, format!("cannot write to standard output: {e}"))),
     }
 }
+
+/// Compacts a finished recording ([`crate::record::compact`]); a failure leaves the file as the
+/// run wrote it, which is complete, and is said on stderr.
+pub(crate) fn compact_recording(path: &std::path::Path) {
+    if !path.is_file() {
+        return;
+    }
+    if let Err(e) = crate::record::compact::compact(path) {
+        eprintln!("slipfront: {e}; {} is kept as written, in its small chunks", path.display());
+    }
+}

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, fail, print};
+use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, compact_recording, fail, print};
 use crate::cli::outputs::{self, Named};
 use crate::cli::signals::Stop;
 use crate::inspect;
@@ -80,6 +80,9 @@ pub fn command(args: ReplayArgs) -> ExitCode {
         Ok(replayed) => replayed,
         Err(e) => return fail(EXIT_FAILED, e),
     };
+    if let Some(rrd) = &rrd {
+        compact_recording(rrd);
+    }
     let into = rrd.map_or_else(|| "the viewer".to_string(), |p| p.display().to_string());
     if stop.requested() {
         let (code, name) = stop.exit();

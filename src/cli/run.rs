@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use clap::Args;
 
 use crate::case;
-use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, fail, print};
+use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, compact_recording, fail, print};
 use crate::cli::outputs::{self, Named, check_writable};
 use crate::cli::signals::Stop;
 use crate::frame::SceneKind;
@@ -84,6 +84,10 @@ pub fn command(args: RunArgs) -> ExitCode {
         &mut sinks,
         LoopOptions { progress: !args.quiet, interrupt: Some(&stop.flag), ..LoopOptions::for_case(&case) },
     );
+    drop(sinks);
+    if let Some(rrd) = &outputs.rrd {
+        compact_recording(rrd);
+    }
     let written = outputs.written(&args, block);
     report(&args, &case, outcome, &written, &stop, scene.time())
 }

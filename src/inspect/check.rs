@@ -29,6 +29,12 @@ use crate::record::schema::{self, RunEnding, RunInfo};
 /// time = 40.0               # s: the last recorded row at or before it
 /// min = 199.0
 /// max = 201.0
+///
+/// [[at]]
+/// entity = "contact/structure"
+/// segment = 3               # per-segment entities: which segment (node = j for body/u_x)
+/// time = 300.0
+/// min = 1.0
 /// ```
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -50,6 +56,10 @@ pub struct EventExpectations {
 #[serde(deny_unknown_fields)]
 pub struct ValueExpectation {
     pub entity: String,
+    /// The segment (of `contact/{quantity}`) or contact-surface node (of `body/u_x`, `body/u_y`)
+    /// whose instance is meant, numbered from 0 at the left.
+    pub segment: Option<usize>,
+    pub node: Option<usize>,
     pub time: f64,
     pub min: Option<f64>,
     pub max: Option<f64>,
@@ -144,7 +154,7 @@ pub fn check(recording: &Recording, expect: &Expectations) -> Report {
         check_events(recording, &info, e, expect, &mut report);
     }
     check_blueprint(recording, &mut report);
-    check_expectations(recording, expect, &mut report);
+    check_expectations(recording, &info, expect, &mut report);
     report
 }
 
@@ -165,6 +175,17 @@ fn describe(recording: &Recording, report: &mut Report) -> Option<(RunInfo, Opti
             return None;
         }
     };
+    if info.series_layout != schema::SERIES_LAYOUT {
+        report.problems.push(format!(
+            "this recording lays its series out as \"{}\" (written by slipfront {}); this slipfront reads \"{}\" \
+             (one entity per quantity, one instance per segment or node): run the case again, or check the \
+             file with the slipfront that wrote it",
+            info.series_layout,
+            info.slipfront_version,
+            schema::SERIES_LAYOUT
+        ));
+        return None;
+    }
     let ending: Option<RunEnding> = recording.static_texts.get(schema::RUN_ENDING).and_then(|t| toml::from_str(t).ok());
     report.summary.push(format!(
         "{} ({} scene, {} segments), t_end = {} s {}",
@@ -284,7 +305,13 @@ fn check_time_axis(path: &str, series: &Series, info: &RunInfo, ending: Option<&
 /// The spatial views' entities, where the run recorded them.
 fn check_spatial(recording: &Recording, info: &RunInfo, report: &mut Report) {
     if info.spatial {
-        for entity in [schema::SPATIAL_CONTACT, schema::SPATIAL_MESH, schema::SPACETIME_IMAGE, schema::SPACETIME_NOW] {
+        let mut entities =
+            vec![schema::SPATIAL_CONTACT, schema::SPATIAL_MESH, schema::SPACETIME_IMAGE, schema::SPACETIME_NOW];
+        entities.push(schema::CONTACT_STATE);
+        if info.kind == SceneKind::Block && info.segments > 1 {
+            entities.push(schema::PROFILE_TRACTION);
+        }
+        for entity in entities {
             if !recording.entities.contains(entity) {
                 report.problems.push(format!("missing entity {entity} of the spatial views"));
             }
@@ -325,14 +352,21 @@ fn check_events(recording: &Recording, info: &RunInfo, e: &RunEnding, expect: &E
 }
 
 /// Each `[[at]]` expectation: the series' last row at or before its time, within its range.
-fn check_expectations(recording: &Recording, expect: &Expectations, report: &mut Report) {
+fn check_expectations(recording: &Recording, info: &RunInfo, expect: &Expectations, report: &mut Report) {
     for (i, at) in expect.at.iter().enumerate() {
-        let Some(series) = recording.series.get(at.entity.trim_start_matches('/')) else {
-            report.problems.push(format!("at[{i}]: no series {}", at.entity));
+        let name = match series_name(at, info) {
+            Ok(name) => name,
+            Err(e) => {
+                report.problems.push(format!("at[{i}]: {e}"));
+                continue;
+            }
+        };
+        let Some(series) = recording.series.get(&name) else {
+            report.problems.push(format!("at[{i}]: no series {name}"));
             continue;
         };
         match series.at(at.time) {
-            None => report.problems.push(format!("at[{i}]: {} has no row at or before t = {} s", at.entity, at.time)),
+            None => report.problems.push(format!("at[{i}]: {name} has no row at or before t = {} s", at.time)),
             Some((t, v)) => {
                 let low = at.min.is_some_and(|m| v < m);
                 let high = at.max.is_some_and(|m| v > m);
@@ -342,11 +376,27 @@ fn check_expectations(recording: &Recording, expect: &Expectations, report: &mut
                     at.max.map_or("inf".into(), |m| m.to_string())
                 );
                 if low || high || !v.is_finite() {
-                    report.problems.push(format!("at[{i}]: {} = {v} at t = {t} s, expected in {range}", at.entity));
+                    report.problems.push(format!("at[{i}]: {name} = {v} at t = {t} s, expected in {range}"));
                 } else {
-                    report.summary.push(format!("{} = {v} at t = {t} s, in {range}", at.entity));
+                    report.summary.push(format!("{name} = {v} at t = {t} s, in {range}"));
                 }
             }
         }
     }
+}
+
+/// The series an expectation names: its entity, and for a per-segment or per-node entity the
+/// instance of its `segment` or `node` among the recorded ones.
+fn series_name(at: &ValueExpectation, info: &RunInfo) -> Result<String, String> {
+    let entity = at.entity.trim_start_matches('/');
+    let (key, index, recorded) = match (at.segment, at.node) {
+        (None, None) => return Ok(entity.to_string()),
+        (Some(_), Some(_)) => return Err("give segment or node, not both".into()),
+        (Some(k), None) => ("segment", k, &info.recorded_segments),
+        (None, Some(j)) => ("node", j, &info.recorded_nodes),
+    };
+    let position = recorded.iter().position(|&r| r == index).ok_or_else(|| {
+        format!("{key} = {index} is not recorded (the recorded {key}s are {recorded:?}); see [record] in the case")
+    })?;
+    Ok(schema::instance_series(entity, position))
 }

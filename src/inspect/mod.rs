@@ -68,6 +68,8 @@ pub struct View {
     pub origin: String,
     /// Entity-path queries.
     pub contents: Vec<String>,
+    /// The view properties stored beside it (`TimeAxis`, `PlotLegend`, ...).
+    pub properties: Vec<String>,
 }
 
 /// A recording that cannot be read at all.

@@ -199,6 +199,8 @@ fn read_view(chunk: &Chunk, names: &Names, views: &mut std::collections::BTreeMa
     if let Some(id) = id.strip_suffix("/ViewContents") {
         let view = views.entry(id.to_string()).or_default();
         view.contents.extend(strings(names.query));
+    } else if let Some((id, property)) = id.split_once('/').filter(|(_, p)| !p.contains('/')) {
+        views.entry(id.to_string()).or_default().properties.push(property.to_string());
     } else if !id.contains('/') {
         let view = views.entry(id.to_string()).or_default();
         if let Some(c) = strings(names.class).pop() {
@@ -226,14 +228,7 @@ fn read_data(chunk: &Chunk, names: &Names, recording: &mut Recording) {
         return;
     }
     if chunk.components().get_array(names.scalars).is_some() {
-        let series = recording.series.entry(entity.clone()).or_default();
-        let steps = chunk.iter_component_indices(names.step, names.scalars);
-        let times = chunk.iter_component_indices(names.time, names.scalars);
-        for (((step, _), (time, _)), values) in steps.zip(times).zip(chunk.iter_slices::<f64>(names.scalars)) {
-            series.steps.push(step.as_i64());
-            series.times.push(time.as_i64() as f64 / 1e9);
-            series.values.push(values.first().copied().unwrap_or(f64::NAN));
-        }
+        read_scalars(chunk, names, &entity, recording);
     }
     if chunk.components().get_array(names.log_text).is_some() {
         let times = chunk.iter_component_indices(names.time, names.log_text);
@@ -241,6 +236,28 @@ fn read_data(chunk: &Chunk, names: &Names, recording: &mut Recording) {
             for t in texts {
                 recording.text_logs.push((entity.clone(), time.as_i64() as f64 / 1e9, t.as_str().to_string()));
             }
+        }
+    }
+}
+
+/// A chunk of `Scalars`: a total as one series named by its entity, a multi-instance entity of
+/// the schema ([`schema::is_instanced`]) as one series per instance, `entity[i]`.
+fn read_scalars(chunk: &Chunk, names: &Names, entity: &str, recording: &mut Recording) {
+    let instanced = schema::is_instanced(entity);
+    let steps = chunk.iter_component_indices(names.step, names.scalars);
+    let times = chunk.iter_component_indices(names.time, names.scalars);
+    for (((step, _), (time, _)), values) in steps.zip(times).zip(chunk.iter_slices::<f64>(names.scalars)) {
+        let (step, time) = (step.as_i64(), time.as_i64() as f64 / 1e9);
+        let row: Vec<(String, f64)> = if instanced {
+            values.iter().enumerate().map(|(i, v)| (schema::instance_series(entity, i), *v)).collect()
+        } else {
+            vec![(entity.to_string(), values.first().copied().unwrap_or(f64::NAN))]
+        };
+        for (name, value) in row {
+            let series = recording.series.entry(name).or_default();
+            series.steps.push(step);
+            series.times.push(time);
+            series.values.push(value);
         }
     }
 }

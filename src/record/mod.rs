@@ -4,6 +4,7 @@
 //! [`crate::study`]) both use it.
 
 pub mod colormap;
+pub mod compact;
 pub mod digest;
 pub mod mcap;
 pub mod proto;

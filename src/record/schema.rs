@@ -1,6 +1,8 @@
 //! The recording schema: timelines, entity paths and units, shared by the writer
 //! ([`crate::sink::rerun`]) and the reader (`slipfront check`). The README's table is this module.
 
+use std::collections::BTreeMap;
+
 use serde::{Deserialize, Serialize};
 
 use crate::case::{Case, RecordSpec};
@@ -32,22 +34,57 @@ pub const SPATIAL_MESH: &str = "spatial/mesh";
 pub const SPATIAL_CONTACT: &str = "spatial/contact";
 pub const SPATIAL_BASE: &str = "spatial/base";
 pub const SPATIAL_SPRING: &str = "spatial/spring";
-/// The space-time view: slip rate against position (across) and time (down), and the cursor.
+/// The space-time view: slip rate against time (across) and position (down), and the cursor.
 pub const SPACETIME: &str = "spacetime";
 pub const SPACETIME_IMAGE: &str = "spacetime/slip_rate";
 pub const SPACETIME_NOW: &str = "spacetime/now";
+/// Tick labels of the space-time view: x in m across, `sim_time` in s down.
+pub const SPACETIME_AXES: &str = "spacetime/axes";
 /// Text log of slip events and ruptures at their onsets.
 pub const EVENTS: &str = "events";
 
-/// `contact/segments/{k}/{quantity}`.
-pub fn segment_entity(segment: usize, quantity: Quantity) -> String {
-    format!("contact/segments/{segment}/{}", quantity.name())
+/// The layout of the time series, written into [`RunInfo::series_layout`]: one entity per
+/// quantity, one instance per recorded segment or node (Rerun's multi-instance `Scalars`).
+pub const SERIES_LAYOUT: &str = "instances";
+/// The layout of recordings from before [`RunInfo::series_layout`]: one entity per segment and
+/// quantity (`contact/segments/{k}/{quantity}`, `body/nodes/{j}/u_x`).
+pub const OLD_SERIES_LAYOUT: &str = "entity per segment";
+
+/// `contact/{quantity}`: one instance per recorded segment, left to right.
+pub fn segment_entity(quantity: Quantity) -> String {
+    format!("contact/{}", quantity.name())
 }
 
-/// `body/nodes/{j}/u_x` (axis 0) or `u_y` (axis 1): contact-surface node `j` from the left.
-pub fn node_entity(node: usize, axis: usize) -> String {
-    format!("body/nodes/{node}/{}", if axis == 0 { "u_x" } else { "u_y" })
+/// `body/u_x` (axis 0) or `body/u_y` (axis 1): one instance per recorded contact-surface node.
+pub fn node_entity(axis: usize) -> &'static str {
+    if axis == 0 { "body/u_x" } else { "body/u_y" }
 }
+
+/// The name a reader gives instance `i` of a multi-instance entity: `entity[i]`.
+pub fn instance_series(entity: &str, i: usize) -> String {
+    format!("{entity}[{i}]")
+}
+
+/// Whether the schema writes `entity` with one instance per recorded segment or node.
+pub fn is_instanced(entity: &str) -> bool {
+    entity == node_entity(0)
+        || entity == node_entity(1)
+        || entity.strip_prefix("contact/").is_some_and(|q| Quantity::ALL.iter().any(|k| k.name() == q))
+}
+
+/// Stick/slip state of every recorded segment (`StateChange`, one lane per segment), logged when
+/// any segment changes state.
+pub const CONTACT_STATE: &str = "contact/state";
+/// The state values of [`CONTACT_STATE`].
+pub const STICK: &str = "stick";
+pub const SLIP: &str = "slip";
+/// Profiles along x at the playhead (`BarChart`s over the segments' centres, in m).
+pub const PROFILE: &str = "profile";
+pub const PROFILE_STATIC_STRENGTH: &str = "profile/static_strength";
+pub const PROFILE_KINETIC_STRENGTH: &str = "profile/kinetic_strength";
+pub const PROFILE_TRACTION: &str = "profile/traction_t";
+pub const PROFILE_SLIP_RATE: &str = "profile/slip_rate";
+pub const PROFILE_STRUCTURE: &str = "profile/structure";
 
 /// The run a recording (or MCAP log) describes, known before it starts.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -74,6 +111,17 @@ pub struct RecordingPlan {
     #[serde(default)]
     pub accuracy: Option<f64>,
     pub slip_rate_threshold: f64,
+    /// The kinetic friction coefficient `μ_k`, for the strength profiles; `None` in logs from
+    /// before it was stored.
+    #[serde(default)]
+    pub mu_k: Option<f64>,
+    /// Every value the case file gives, after the overrides, by its `--set` key
+    /// (`friction.mu_s`); empty in logs from before they were stored.
+    #[serde(default)]
+    pub parameters: BTreeMap<String, toml::Value>,
+    /// The `--set` overrides, as given.
+    #[serde(default)]
+    pub overrides: Vec<String>,
     pub spec: RecordSpec,
 }
 
@@ -91,6 +139,9 @@ impl RecordingPlan {
             chosen_because: case.time.chosen_because.clone(),
             accuracy: case.time.accuracy,
             slip_rate_threshold: case.slip_rate_threshold(),
+            mu_k: Some(case.friction.mu_k),
+            parameters: flatten(&case.source.table),
+            overrides: case.source.overrides.clone(),
             spec: case.record.clone(),
         }
     }
@@ -100,6 +151,28 @@ impl RecordingPlan {
     pub fn stepping(&self) -> String {
         stepping(self.integrator, self.tolerance, self.steps, self.dt, &self.chosen_because, self.accuracy)
     }
+}
+
+/// The values of a case table by dotted key (`scene.normal_traction.left`); arrays and other
+/// non-scalar values as their TOML text.
+pub fn flatten(table: &toml::Table) -> BTreeMap<String, toml::Value> {
+    fn walk(prefix: &str, table: &toml::Table, out: &mut BTreeMap<String, toml::Value>) {
+        for (key, value) in table {
+            let key = if prefix.is_empty() { key.clone() } else { format!("{prefix}.{key}") };
+            match value {
+                toml::Value::Table(inner) => walk(&key, inner, out),
+                toml::Value::String(_) | toml::Value::Float(_) | toml::Value::Integer(_) | toml::Value::Boolean(_) => {
+                    out.insert(key, value.clone());
+                }
+                other => {
+                    out.insert(key, toml::Value::String(other.to_string()));
+                }
+            }
+        }
+    }
+    let mut out = BTreeMap::new();
+    walk("", table, &mut out);
+    out
 }
 
 /// The recording id of a run of `case` named `name`: the name and an `xxh32` of the slipfront
@@ -159,16 +232,30 @@ impl Source {
     }
 }
 
-/// One scalar time series of the schema.
+/// One scalar entity of the schema: one instance per source.
 #[derive(Debug, Clone, PartialEq)]
-pub struct SeriesSpec {
+pub struct EntitySpec {
     /// Entity path.
     pub path: String,
-    pub source: Source,
-    /// Name shown in plots, with the unit.
-    pub label: String,
-    /// Position along the surface as a fraction of its width, for colouring; `None` for totals.
-    pub position: Option<f64>,
+    /// What each instance reads from a frame.
+    pub sources: Vec<Source>,
+    /// Name of each instance in plots, with the unit (`A · x = 0.5 m: f_t (Pa)`).
+    pub labels: Vec<String>,
+    /// Position of each instance along the surface as a fraction of its width, for colouring;
+    /// `None` for totals.
+    pub positions: Vec<Option<f64>>,
+}
+
+impl EntitySpec {
+    /// The names readers give its series: the path itself for a total, `path[i]` for
+    /// instance `i` of a multi-instance entity ([`is_instanced`]).
+    pub fn series_names(&self) -> Vec<String> {
+        if is_instanced(&self.path) {
+            (0..self.sources.len()).map(|i| instance_series(&self.path, i)).collect()
+        } else {
+            vec![self.path.clone()]
+        }
+    }
 }
 
 /// The segments and nodes that get time series under `spec`.
@@ -183,46 +270,66 @@ pub fn selection(spec: &RecordSpec, layout: &Layout) -> (Vec<usize>, Vec<usize>)
     )
 }
 
-/// Every series of a recording, in the order they are written.
-pub fn series_plan(layout: &Layout, segments: &[usize], nodes: &[usize], quantities: &[Quantity]) -> Vec<SeriesSpec> {
+/// The name of segment `k` in plots: its probe name and centre (`A · x = 0.5 m`).
+pub fn segment_label(layout: &Layout, k: usize) -> String {
+    let seg = &layout.segments[k];
+    let x = 0.5 * (seg.left + seg.right);
+    match &seg.name {
+        Some(name) => format!("{name} · x = {x} m"),
+        None if layout.segments.len() > 1 => format!("segment {k} · x = {x} m"),
+        None => "contact".to_string(),
+    }
+}
+
+/// The name of contact-surface node `j` in plots (`Node 1 · x = 0 m`).
+pub fn node_label(layout: &Layout, j: usize) -> String {
+    let node = &layout.surface_nodes[j];
+    format!("{} · x = {} m", node.name.clone().unwrap_or_else(|| format!("node {j}")), node.x)
+}
+
+/// Every scalar entity of a recording, in the order they are written.
+pub fn series_plan(layout: &Layout, segments: &[usize], nodes: &[usize], quantities: &[Quantity]) -> Vec<EntitySpec> {
     let width = layout.segments.last().map_or(1.0, |s| s.right).max(f64::MIN_POSITIVE);
     let at = |x: f64| Some(if layout.segments.len() > 1 { x / width } else { 0.5 });
     let mut plan = Vec::new();
-    for &k in segments {
-        let seg = &layout.segments[k];
-        let name = match &seg.name {
-            Some(name) => format!("{name} (segment {k})"),
-            None if layout.segments.len() > 1 => format!("segment {k}"),
-            None => "contact".to_string(),
-        };
-        for &q in quantities {
-            plan.push(SeriesSpec {
-                path: segment_entity(k, q),
-                source: Source::Segment(k, q),
-                label: format!("{name}: {}", q.label()),
-                position: at(0.5 * (seg.left + seg.right)),
-            });
-        }
+    for &q in quantities {
+        plan.push(EntitySpec {
+            path: segment_entity(q),
+            sources: segments.iter().map(|&k| Source::Segment(k, q)).collect(),
+            labels: segments.iter().map(|&k| format!("{}: {}", segment_label(layout, k), q.label())).collect(),
+            positions: segments
+                .iter()
+                .map(|&k| at(0.5 * (layout.segments[k].left + layout.segments[k].right)))
+                .collect(),
+        });
     }
-    for &j in nodes {
-        let node = &layout.surface_nodes[j];
-        let name = node.name.clone().unwrap_or_else(|| format!("node {j}"));
+    if !nodes.is_empty() {
         for (axis, symbol) in [(0, "u_x (m)"), (1, "u_y (m)")] {
-            plan.push(SeriesSpec {
-                path: node_entity(j, axis),
-                source: Source::Node(j, axis),
-                label: format!("{name}: {symbol}"),
-                position: at(node.x),
+            plan.push(EntitySpec {
+                path: node_entity(axis).into(),
+                sources: nodes.iter().map(|&j| Source::Node(j, axis)).collect(),
+                labels: nodes.iter().map(|&j| format!("{}: {symbol}", node_label(layout, j))).collect(),
+                positions: nodes.iter().map(|&j| at(layout.surface_nodes[j].x)).collect(),
             });
         }
     }
-    let total = |path: &str, source, label: String| SeriesSpec { path: path.into(), source, label, position: None };
-    plan.push(total(FRICTION_FORCE, Source::FrictionForce, format!("friction force ({})", layout.kind.force_unit())));
+    let total = |path: &str, source, label: String, position: Option<f64>| EntitySpec {
+        path: path.into(),
+        sources: vec![source],
+        labels: vec![label],
+        positions: vec![position],
+    };
+    plan.push(total(
+        FRICTION_FORCE,
+        Source::FrictionForce,
+        format!("friction force ({})", layout.kind.force_unit()),
+        None,
+    ));
     let spring = layout.kind == SceneKind::SpringBlock;
-    plan.push(total(BASE_UX, Source::Base, if spring { "spring end u_x (m)" } else { "base u_x (m)" }.into()));
+    plan.push(total(BASE_UX, Source::Base, if spring { "spring end u_x (m)" } else { "base u_x (m)" }.into(), None));
     if spring {
-        plan.push(SeriesSpec { position: Some(0.0), ..total(BLOCK_X, Source::BlockX, "block x (m)".into()) });
-        plan.push(SeriesSpec { position: Some(1.0), ..total(BLOCK_V, Source::BlockV, "block v (m/s)".into()) });
+        plan.push(total(BLOCK_X, Source::BlockX, "block x (m)".into(), Some(0.0)));
+        plan.push(total(BLOCK_V, Source::BlockV, "block v (m/s)".into(), Some(1.0)));
     }
     plan
 }
@@ -263,7 +370,11 @@ pub struct RunInfo {
     pub probe_segments: Vec<usize>,
     pub probe_nodes: Vec<usize>,
     pub quantities: Vec<Quantity>,
-    /// Every scalar time series, by entity path.
+    /// How the series are laid out in entities: [`SERIES_LAYOUT`] (written by this slipfront),
+    /// or, in recordings from before this field, [`OLD_SERIES_LAYOUT`].
+    #[serde(default = "old_series_layout")]
+    pub series_layout: String,
+    /// Every scalar time series, by the name a reader gives it ([`EntitySpec::series_names`]).
     pub series: Vec<String>,
     /// Whether the spatial and space-time views were logged.
     pub spatial: bool,
@@ -285,7 +396,7 @@ impl RunInfo {
         layout: &Layout,
         segments: &[usize],
         nodes: &[usize],
-        series: &[SeriesSpec],
+        series: &[EntitySpec],
         spatial: bool,
     ) -> Self {
         let (named_segments, named_nodes): (Vec<usize>, Vec<usize>) = (
@@ -317,13 +428,18 @@ impl RunInfo {
             probe_segments: named_segments,
             probe_nodes: named_nodes,
             quantities: plan.spec.quantities.clone(),
-            series: series.iter().map(|s| s.path.clone()).collect(),
+            series_layout: SERIES_LAYOUT.into(),
+            series: series.iter().flat_map(EntitySpec::series_names).collect(),
             spatial,
             magnification: plan.spec.magnification,
             slip_rate_threshold: plan.slip_rate_threshold,
             stick_every: plan.spec.stick_every,
         }
     }
+}
+
+fn old_series_layout() -> String {
+    OLD_SERIES_LAYOUT.into()
 }
 
 /// Which steps a recording keeps: every step while any segment slips faster than the event
@@ -362,6 +478,61 @@ impl Decimator {
     pub fn keep_last(&mut self, frame: &Frame) -> bool {
         let keep = self.last != Some(frame.step);
         self.last = Some(frame.step);
+        keep
+    }
+}
+
+/// Frames of the drawn views (the block, the profiles along x) over a run: a view frame is
+/// written at most every `t_end / VIEW_FRAMES` while a segment slips and every
+/// `t_end / STICK_VIEW_FRAMES` otherwise, so the views scrub smoothly through a rupture without
+/// repeating every row of the time series.
+pub const VIEW_FRAMES: f64 = 10_000.0;
+pub const STICK_VIEW_FRAMES: f64 = 500.0;
+
+/// Which recorded steps also get a view frame: the first, every step where a segment changes
+/// between stick and slip, and otherwise steps at least [`VIEW_FRAMES`] apart in slip and
+/// [`STICK_VIEW_FRAMES`] apart in stick; the last through [`ViewDecimator::keep_last`].
+#[derive(Debug, Clone)]
+pub struct ViewDecimator {
+    threshold: f64,
+    slip_gap: f64,
+    stick_gap: f64,
+    last: Option<(u64, f64)>,
+    slipping: Vec<bool>,
+}
+
+impl ViewDecimator {
+    pub fn new(plan: &RecordingPlan) -> Self {
+        Self {
+            threshold: plan.slip_rate_threshold,
+            slip_gap: plan.t_end / VIEW_FRAMES,
+            stick_gap: plan.t_end / STICK_VIEW_FRAMES,
+            last: None,
+            slipping: Vec::new(),
+        }
+    }
+
+    /// Whether recorded `frame` gets a view frame (and, if so, remembers it).
+    pub fn keep(&mut self, frame: &Frame) -> bool {
+        let slipping: Vec<bool> = frame.segments.iter().map(|s| s.slip_rate > self.threshold).collect();
+        let keep = match self.last {
+            None => true,
+            Some((_, last)) => {
+                let gap = if slipping.iter().any(|&s| s) { self.slip_gap } else { self.stick_gap };
+                slipping != self.slipping || frame.time - last >= gap * (1.0 - 1e-9)
+            }
+        };
+        self.slipping = slipping;
+        if keep {
+            self.last = Some((frame.step, frame.time));
+        }
+        keep
+    }
+
+    /// Whether the run's last recorded frame still needs its view frame.
+    pub fn keep_last(&mut self, frame: &Frame) -> bool {
+        let keep = self.last.map(|(step, _)| step) != Some(frame.step);
+        self.last = Some((frame.step, frame.time));
         keep
     }
 }

@@ -1,10 +1,27 @@
-//! The default blueprint sent with every recording: the spatial and space-time views on top,
-//! time series of traction, `1/R*` and displacement at the probes below (the paper's Figures
-//! 8 and 9), and the event log.
+//! The default blueprint sent with every recording, laid out to open on the answer:
+//!
+//! * top: the block with its contact coloured by state, and the profiles along x at the
+//!   playhead (traction against strength, slip rate, `1/R*`);
+//! * middle: the stick/slip lanes of the segments and the space-time map of slip rate, both
+//!   with time across, so a rupture front reads the same in both;
+//! * bottom: time series at the probes over the whole run (the paper's Figures 8 and 9) and the
+//!   event log.
+//!
+//! Rerun 0.36's Rust blueprint API builds containers, views, their contents and per-entity
+//! overrides, but not a view's properties (time axis, legend); [`send`] adds those to the same
+//! blueprint store as the archetypes the viewer reads (`view/{id}/TimeAxis`,
+//! `view/{id}/PlotLegend`).
 
+use rerun::blueprint::components::PanelState;
 use rerun::blueprint::{
-    Blueprint, ContainerLike, Horizontal, Spatial2DView, TextLogView, TimePanel, TimeSeriesView, Vertical,
+    BarChartView, Blueprint, BlueprintActivation, BlueprintPanel, ContainerLike, Horizontal, SelectionPanel,
+    Spatial2DView, StateTimelineView, TextLogView, TimePanel, TimeSeriesView, Vertical, VisualizableArchetype as _,
 };
+use rerun::external::re_log_types::{BlueprintActivationCommand, LogMsg};
+use rerun::external::re_sdk_types::blueprint::archetypes::{PlotLegend, TimeAxis};
+use rerun::external::re_sdk_types::blueprint::components::{Corner2D, LinkAxis};
+use rerun::external::re_sdk_types::datatypes::{TimeInt, TimeRange, TimeRangeBoundary};
+use rerun::{AsComponents, RecordingStream, RecordingStreamBuilder, SeriesLines};
 
 use crate::frame::Quantity;
 use crate::frame::{Layout, SceneKind};
@@ -12,60 +29,222 @@ use crate::record::schema;
 
 /// Names of the views, for readers that check them.
 pub const VIEW_BLOCK: &str = "Block";
-pub const VIEW_SPACETIME: &str = "Space-time: slip rate";
+pub const VIEW_STRENGTH: &str = "Along x (m): f_t against static and kinetic strength (Pa)";
+pub const VIEW_SLIP_RATE: &str = "Along x (m): slip rate (m/s)";
+pub const VIEW_STRUCTURE_PROFILE: &str = "Along x (m): 1/R*";
+pub const VIEW_STATE: &str = "Stick (blue) / slip (orange), a lane per segment from x = 0 at the top";
+pub const VIEW_SPACETIME: &str = "Space-time: log10 slip rate (m/s), x down, sim_time across";
 pub const VIEW_TRACTION: &str = "Tangential traction f_t (Pa)";
 pub const VIEW_STRUCTURE: &str = "Degree of structure 1/R*";
 pub const VIEW_DISPLACEMENT: &str = "Displacement u_x (m)";
 pub const VIEW_EVENTS: &str = "Slip events";
 
-/// The default blueprint for a run over `layout` whose series cover `segments` and `nodes`.
-pub fn default_blueprint(
-    layout: &Layout,
-    segments: &[usize],
-    nodes: &[usize],
-    spatial: bool,
-    magnification: f64,
-) -> Blueprint {
-    // Plot the named probes when there are any, else every recorded segment and node.
-    let probes = |recorded: &[usize], named: &dyn Fn(usize) -> bool| -> Vec<usize> {
-        let chosen: Vec<usize> = recorded.iter().copied().filter(|&k| named(k)).collect();
-        if chosen.is_empty() { recorded.to_vec() } else { chosen }
-    };
-    let plot_segments = probes(segments, &|k| layout.segments[k].name.is_some());
-    let plot_nodes = probes(nodes, &|j| layout.surface_nodes[j].name.is_some());
-    let segment_series = |q: Quantity| plot_segments.iter().map(|&k| schema::segment_entity(k, q)).collect::<Vec<_>>();
+/// What the blueprint shows of a run.
+pub struct Contents<'a> {
+    pub layout: &'a Layout,
+    /// Recorded segments and nodes (the instances of the series entities).
+    pub segments: &'a [usize],
+    pub nodes: &'a [usize],
+    pub spatial: bool,
+    pub magnification: f64,
+    pub t_end: f64,
+    /// The profile entities written ([`crate::sink::slip_front`]).
+    pub profiles: Vec<&'static str>,
+}
 
-    let mut plots: Vec<ContainerLike> = vec![
-        TimeSeriesView::new(VIEW_TRACTION).with_contents(segment_series(Quantity::TractionT)).into(),
-        TimeSeriesView::new(VIEW_STRUCTURE).with_contents(segment_series(Quantity::Structure)).into(),
-    ];
-    let mut displacement: Vec<String> = plot_nodes.iter().map(|&j| schema::node_entity(j, 0)).collect();
-    if layout.kind == SceneKind::SpringBlock {
-        displacement.push(schema::BLOCK_X.into());
+/// A view's extra properties, written beside it.
+struct Properties {
+    path: String,
+    batches: Vec<(&'static str, Vec<rerun::SerializedComponentBatch>)>,
+}
+
+/// Sends the default blueprint of `contents` to `rec`, active and default.
+pub fn send(rec: &RecordingStream, contents: &Contents<'_>) -> rerun::RecordingStreamResult<()> {
+    let mut properties = Vec::new();
+    let root = root(contents, &mut properties);
+    // The side panels start collapsed, so the views get the screen; one click opens them.
+    let blueprint = Blueprint::new(root)
+        .with_blueprint_panel(BlueprintPanel::new().with_state(PanelState::Collapsed))
+        .with_selection_panel(SelectionPanel::new().with_state(PanelState::Collapsed))
+        .with_time_panel(TimePanel::new().with_timeline(schema::SIM_TIME).with_state(PanelState::Collapsed));
+    let activation = BlueprintActivation { make_active: true, make_default: true };
+    // The SDK sends a blueprint through a stream; a memory stream hands its messages back.
+    let (capture, storage) = RecordingStreamBuilder::new(schema::APP_ID).memory()?;
+    blueprint.send(&capture, activation)?;
+    let mut messages: Vec<LogMsg> = storage
+        .take()
+        .into_iter()
+        .filter(|m| m.store_id().is_blueprint() && !matches!(m, LogMsg::BlueprintActivationCommand(_)))
+        .collect();
+    let Some(blueprint_id) = messages.first().map(|m| m.store_id().clone()) else {
+        return Ok(());
+    };
+    let (extra, extra_storage) =
+        RecordingStreamBuilder::from_store_id(&blueprint_id).send_properties(false).memory()?;
+    extra.set_time_sequence("blueprint", 0);
+    for view in &properties {
+        for (name, batches) in &view.batches {
+            extra.log_serialized_batches(format!("{}/{name}", view.path), false, batches.iter().cloned())?;
+        }
     }
-    displacement.push(schema::BASE_UX.into());
-    plots.push(TimeSeriesView::new(VIEW_DISPLACEMENT).with_contents(displacement).into());
-    plots.push(TextLogView::new(VIEW_EVENTS).with_origin(format!("/{}", schema::EVENTS)).into());
-    let plots = Horizontal::new(plots);
+    messages.extend(extra_storage.take().into_iter().filter(|m| matches!(m, LogMsg::ArrowMsg(..))));
+    rec.send_blueprint(messages, BlueprintActivationCommand { blueprint_id, make_active: true, make_default: true });
+    Ok(())
+}
 
-    let root: ContainerLike = if spatial {
-        let block_name = if magnification == 1.0 {
-            VIEW_BLOCK.to_string()
-        } else {
-            format!("{VIEW_BLOCK} (displacements x{magnification})")
-        };
-        Vertical::new([
-            Horizontal::new([
-                Spatial2DView::new(block_name).with_origin(format!("/{}", schema::SPATIAL)).into(),
-                Spatial2DView::new(VIEW_SPACETIME).with_origin(format!("/{}", schema::SPACETIME)).into(),
-            ])
-            .with_column_shares([3.0, 2.0])
-            .into(),
-            plots.into(),
-        ])
-        .into()
-    } else {
-        plots.into()
+/// The blueprint path of a view (`view/{id}`).
+fn path_of(view: &ContainerLike) -> String {
+    match view {
+        ContainerLike::View(v) => v.blueprint_path().to_string().trim_start_matches('/').to_string(),
+        _ => String::new(),
+    }
+}
+
+/// A time series over the whole run, its legend in `corner` or hidden.
+fn whole_run(
+    view: TimeSeriesView,
+    t_end: f64,
+    legend: Option<Corner2D>,
+    properties: &mut Vec<Properties>,
+) -> ContainerLike {
+    let view: ContainerLike = view.into();
+    let range = TimeRange {
+        start: TimeRangeBoundary::Absolute(TimeInt(0)),
+        end: TimeRangeBoundary::Absolute(TimeInt((t_end * 1e9).round() as i64)),
     };
-    Blueprint::new(root).with_time_panel(TimePanel::new().with_timeline(schema::SIM_TIME))
+    let time_axis = TimeAxis::new().with_link(LinkAxis::Independent).with_view_range(range);
+    properties.push(Properties {
+        path: path_of(&view),
+        batches: vec![("TimeAxis", time_axis.as_serialized_batches()), ("PlotLegend", legend_batches(legend))],
+    });
+    view
+}
+
+/// A plot's legend in `corner`, or hidden.
+fn legend_batches(corner: Option<Corner2D>) -> Vec<rerun::SerializedComponentBatch> {
+    match corner {
+        Some(corner) => PlotLegend::new().with_corner(corner).with_visible(true),
+        None => PlotLegend::new().with_visible(false),
+    }
+    .as_serialized_batches()
+}
+
+/// Instances of `recorded` that are named probes, as a visibility mask (every instance when
+/// none is named).
+fn probe_mask(recorded: &[usize], named: &dyn Fn(usize) -> bool) -> Vec<bool> {
+    let mask: Vec<bool> = recorded.iter().map(|&k| named(k)).collect();
+    if mask.iter().any(|&m| m) { mask } else { vec![true; recorded.len()] }
+}
+
+/// A time series of `entities`, each showing only the instances `mask` keeps.
+fn probe_plot(name: &str, entities: &[(String, Option<Vec<bool>>)]) -> TimeSeriesView {
+    let mut view = TimeSeriesView::new(name).with_contents(entities.iter().map(|(e, _)| format!("/{e}")));
+    for (entity, mask) in entities {
+        if let Some(mask) = mask {
+            view = view.with_override(
+                format!("/{entity}"),
+                SeriesLines::update_fields().with_visible_series(mask.iter().copied()).visualizer(),
+            );
+        }
+    }
+    view
+}
+
+/// The colour key of a probe plot: the named probes (or the recorded ones' count) from purple
+/// at the left to yellow at the right.
+fn key(recorded: &[usize], name: &dyn Fn(usize) -> Option<String>) -> String {
+    let names: Vec<String> = recorded.iter().filter_map(|&k| name(k)).collect();
+    let which = match names.as_slice() {
+        [] => format!("{} points", recorded.len()),
+        [one] => one.clone(),
+        [first, .., last] => format!("{first} to {last}"),
+    };
+    format!("{which} (purple: left, yellow: right)")
+}
+
+/// The bottom row: traction, structure and displacement at the probes, and the event log.
+fn time_series(contents: &Contents<'_>, properties: &mut Vec<Properties>) -> ContainerLike {
+    let layout = contents.layout;
+    let segment_mask = probe_mask(contents.segments, &|k| layout.segments[k].name.is_some());
+    let node_mask = probe_mask(contents.nodes, &|j| layout.surface_nodes[j].name.is_some());
+    let segment_plot = |q: Quantity| vec![(schema::segment_entity(q), Some(segment_mask.clone()))];
+    let mut displacement = Vec::new();
+    if !contents.nodes.is_empty() {
+        displacement.push((schema::node_entity(0).to_string(), Some(node_mask)));
+    }
+    if layout.kind == SceneKind::SpringBlock {
+        displacement.push((schema::BLOCK_X.to_string(), None));
+    }
+    displacement.push((schema::BASE_UX.to_string(), None));
+    let t_end = contents.t_end;
+    // No legend over the data: the titles give the key, each probe coloured by its position
+    // along the surface alike in every plot, and hovering a line names it.
+    let segment_key = key(contents.segments, &|k| layout.segments[k].name.clone());
+    let node_key = key(contents.nodes, &|j| layout.surface_nodes[j].name.clone());
+    let traction = format!("{VIEW_TRACTION} at {segment_key}");
+    let structure = format!("{VIEW_STRUCTURE} at {segment_key}");
+    let displacement_name = format!("{VIEW_DISPLACEMENT} at {node_key}; grey: the base");
+    Horizontal::new([
+        whole_run(probe_plot(&traction, &segment_plot(Quantity::TractionT)), t_end, None, properties),
+        whole_run(probe_plot(&structure, &segment_plot(Quantity::Structure)), t_end, None, properties),
+        whole_run(probe_plot(&displacement_name, &displacement), t_end, None, properties),
+        TextLogView::new(VIEW_EVENTS).with_origin(format!("/{}", schema::EVENTS)).into(),
+    ])
+    .with_column_shares([3.0, 3.0, 3.0, 2.0])
+    .into()
+}
+
+/// The top row: the block and, for a block of several segments, the profiles along x.
+fn block_and_profiles(contents: &Contents<'_>, properties: &mut Vec<Properties>) -> ContainerLike {
+    let block_name = if contents.magnification == 1.0 {
+        VIEW_BLOCK.to_string()
+    } else {
+        format!("{VIEW_BLOCK} (displacements x{})", contents.magnification)
+    };
+    let block: ContainerLike = Spatial2DView::new(block_name).with_origin(format!("/{}", schema::SPATIAL)).into();
+    if contents.profiles.is_empty() {
+        return block;
+    }
+    let mut chart = |name: &str, entities: &[&str]| -> ContainerLike {
+        let view: ContainerLike =
+            BarChartView::new(name).with_contents(entities.iter().map(|e| format!("/{e}"))).into();
+        let legend = (entities.len() > 1).then_some(Corner2D::LeftTop);
+        properties.push(Properties { path: path_of(&view), batches: vec![("PlotLegend", legend_batches(legend))] });
+        view
+    };
+    let strength: Vec<&str> =
+        [schema::PROFILE_STATIC_STRENGTH, schema::PROFILE_KINETIC_STRENGTH, schema::PROFILE_TRACTION]
+            .into_iter()
+            .filter(|e| contents.profiles.contains(e))
+            .collect();
+    Horizontal::new([
+        block,
+        Vertical::new([
+            chart(VIEW_STRENGTH, &strength),
+            chart(VIEW_SLIP_RATE, &[schema::PROFILE_SLIP_RATE]),
+            chart(VIEW_STRUCTURE_PROFILE, &[schema::PROFILE_STRUCTURE]),
+        ])
+        .with_row_shares([2.0, 1.0, 1.0])
+        .into(),
+    ])
+    .with_column_shares([3.0, 2.0])
+    .into()
+}
+
+/// The whole layout; the time series' properties go into `properties`.
+fn root(contents: &Contents<'_>, properties: &mut Vec<Properties>) -> ContainerLike {
+    let series = time_series(contents, properties);
+    if !contents.spatial {
+        return series;
+    }
+    let lanes: ContainerLike =
+        StateTimelineView::new(VIEW_STATE).with_contents([format!("/{}", schema::CONTACT_STATE)]).into();
+    let map: ContainerLike = Spatial2DView::new(VIEW_SPACETIME).with_origin(format!("/{}", schema::SPACETIME)).into();
+    Vertical::new([
+        block_and_profiles(contents, properties),
+        Horizontal::new([map, lanes]).with_column_shares([3.0, 2.0]).into(),
+        series,
+    ])
+    .with_row_shares([3.0, 2.5, 4.0])
+    .into()
 }

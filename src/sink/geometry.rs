@@ -1,5 +1,6 @@
 //! What the spatial and space-time views draw for one frame, and the column buffers that carry
-//! it to Rerun in explicit chunks (so the same frames always make the same chunks).
+//! it to Rerun in explicit chunks (so the same frames always make the same chunks). Colours,
+//! radii and draw order are static ([`log_styles`]) except the contact's, which shows its state.
 
 use std::collections::BTreeMap;
 
@@ -8,24 +9,44 @@ use rerun::{LineStrips2D, SerializedComponentColumn};
 use crate::frame::{Frame, Layout};
 use crate::record::colormap::{SLIP_RATE, sample};
 use crate::record::schema::{self, RecordingPlan};
+use crate::sink::spacetime::{TIME_BINS, map_height};
 
-/// Rows of the space-time image, spread over `[0, t_end]`.
-pub const SPACETIME_ROWS: usize = 1000;
-/// Target width of the space-time image (px); each segment gets an equal share.
-pub const SPACETIME_WIDTH: usize = 500;
-
-/// Width of the space-time image for `segments` segments (px).
-pub fn spacetime_width(segments: usize) -> usize {
-    let segments = segments.max(1);
-    segments * (SPACETIME_WIDTH / segments).max(1)
-}
-
-/// One entity's drawing for one frame: strips with a colour and radius each.
+/// One entity's drawing for one frame: its strips, and their colours where they change from
+/// frame to frame (else the entity's static style, [`log_styles`]).
 struct Row {
     strips: Vec<Vec<[f32; 2]>>,
-    colours: Vec<[u8; 3]>,
-    /// Radius in UI points, for every strip of the row.
-    radius: f32,
+    colours: Option<Vec<[u8; 3]>>,
+}
+
+/// The fixed look of each geometry entity: colour, radius in UI points, draw order.
+const STYLES: [(&str, [u8; 3], f32, f32); 5] = [
+    (schema::SPATIAL_MESH, [150, 150, 150], 0.75, 0.0),
+    (schema::SPATIAL_CONTACT, [70, 130, 200], 4.0, 10.0),
+    (schema::SPATIAL_BASE, [90, 90, 90], 1.5, 0.0),
+    (schema::SPATIAL_SPRING, [200, 200, 200], 1.0, 0.0),
+    (schema::SPACETIME_NOW, [255, 255, 255], 1.0, 10.0),
+];
+
+/// Logs the static look of every geometry entity, and the base of a block, which does not
+/// move in the view (its displacement is a time series).
+pub fn log_styles(rec: &rerun::RecordingStream, layout: &Layout) -> rerun::RecordingStreamResult<()> {
+    for (entity, [r, g, b], radius, order) in STYLES {
+        if entity == schema::SPATIAL_SPRING && layout.mesh.is_some() {
+            continue;
+        }
+        rec.log_static(
+            entity,
+            &LineStrips2D::update_fields()
+                .with_colors([rerun::Color::from_rgb(r, g, b)])
+                .with_radii([rerun::Radius::new_ui_points(radius)])
+                .with_draw_order(order),
+        )?;
+    }
+    if let Some(mesh) = layout.mesh {
+        let y = (0.12 * mesh.height.min(mesh.width)) as f32;
+        rec.log_static(schema::SPATIAL_BASE, &LineStrips2D::new([[[0.0, y], [mesh.width as f32, y]]]))?;
+    }
+    Ok(())
 }
 
 /// Colour of a contact segment: blue while it sticks, orange to yellow as its slip rate grows
@@ -38,11 +59,10 @@ fn state_colour(rate: f64, threshold: f64) -> [u8; 3] {
     }
 }
 
-/// The drawing of `frame`: entity path and row, for every geometry entity of the scene.
+/// The drawing of `frame`: entity path and row, for every moving geometry entity of the scene.
 fn draw(frame: &Frame, layout: &Layout, plan: &RecordingPlan) -> Vec<(&'static str, Row)> {
     let threshold = plan.slip_rate_threshold;
     let mag = plan.spec.magnification;
-    let grey = [150, 150, 150];
     let mut rows = Vec::new();
     if let Some(mesh) = layout.mesh {
         let (dx, dy) = (mesh.dx(), mesh.dy());
@@ -53,37 +73,24 @@ fn draw(frame: &Frame, layout: &Layout, plan: &RecordingPlan) -> Vec<(&'static s
         };
         let mut lines: Vec<Vec<[f32; 2]>> = (0..=mesh.ny).map(|j| (0..=mesh.nx).map(|i| at(i, j)).collect()).collect();
         lines.extend((0..=mesh.nx).map(|i| (0..=mesh.ny).map(|j| at(i, j)).collect()));
-        let n = lines.len();
-        rows.push((schema::SPATIAL_MESH, Row { strips: lines, colours: vec![grey; n], radius: 0.75 }));
+        rows.push((schema::SPATIAL_MESH, Row { strips: lines, colours: None }));
         rows.push((
             schema::SPATIAL_CONTACT,
             Row {
                 strips: (0..mesh.nx).map(|k| vec![at(k, 0), at(k + 1, 0)]).collect(),
-                colours: frame.segments.iter().map(|s| state_colour(s.slip_rate, threshold)).collect(),
-                radius: 4.0,
+                colours: Some(frame.segments.iter().map(|s| state_colour(s.slip_rate, threshold)).collect()),
             },
         ));
-        // The base: a line below the block with ticks that move with it.
-        let y = (0.12 * mesh.height.min(mesh.width)) as f32;
-        let shift = (mag * frame.base_displacement).rem_euclid(dx);
-        let mut base = vec![vec![[0.0, y], [mesh.width as f32, y]]];
-        base.extend((0..mesh.nx).map(|k| {
-            let x = (k as f64 * dx + shift) as f32;
-            vec![[x, y], [x, 2.0 * y]]
-        }));
-        let n = base.len();
-        rows.push((schema::SPATIAL_BASE, Row { strips: base, colours: vec![[90, 90, 90]; n], radius: 1.5 }));
     } else if let Some([x, _]) = frame.block {
         // Spring-block: the block, its contact patch, and the spring to the moving far end.
         let left = (mag * x) as f32;
         let block = vec![[left, 0.0], [left + 1.0, 0.0], [left + 1.0, -0.6], [left, -0.6], [left, 0.0]];
-        rows.push((schema::SPATIAL_MESH, Row { strips: vec![block], colours: vec![grey], radius: 0.75 }));
+        rows.push((schema::SPATIAL_MESH, Row { strips: vec![block], colours: None }));
         rows.push((
             schema::SPATIAL_CONTACT,
             Row {
                 strips: vec![vec![[left, 0.0], [left + 1.0, 0.0]]],
-                colours: vec![state_colour(frame.segments[0].slip_rate, threshold)],
-                radius: 4.0,
+                colours: Some(vec![state_colour(frame.segments[0].slip_rate, threshold)]),
             },
         ));
         let far = 2.5 + (mag * frame.base_displacement) as f32;
@@ -102,19 +109,13 @@ fn draw(frame: &Frame, layout: &Layout, plan: &RecordingPlan) -> Vec<(&'static s
                 [start + s * (far - start), -0.3 + wiggle]
             })
             .collect();
-        rows.push((schema::SPATIAL_SPRING, Row { strips: vec![spring], colours: vec![[200, 200, 200]], radius: 1.0 }));
-        rows.push((
-            schema::SPATIAL_BASE,
-            Row { strips: vec![vec![[-0.5, 0.05], [far + 0.5, 0.05]]], colours: vec![[90, 90, 90]], radius: 1.5 },
-        ));
+        rows.push((schema::SPATIAL_SPRING, Row { strips: vec![spring], colours: None }));
+        rows.push((schema::SPATIAL_BASE, Row { strips: vec![vec![[-0.5, 0.05], [far + 0.5, 0.05]]], colours: None }));
     }
-    // The space-time cursor: the current time's row across the image.
-    let width = spacetime_width(layout.segments.len()) as f32;
-    let row = (frame.time / plan.t_end * SPACETIME_ROWS as f64) as f32;
-    rows.push((
-        schema::SPACETIME_NOW,
-        Row { strips: vec![vec![[0.0, row], [width, row]]], colours: vec![[255, 255, 255]], radius: 1.0 },
-    ));
+    // The space-time cursor: the current time's column across the map.
+    let column = (frame.time / plan.t_end * TIME_BINS as f64) as f32;
+    let height = map_height(layout.segments.len()) as f32;
+    rows.push((schema::SPACETIME_NOW, Row { strips: vec![vec![[column, 0.0], [column, height]]], colours: None }));
     rows
 }
 
@@ -122,8 +123,8 @@ fn draw(frame: &Frame, layout: &Layout, plan: &RecordingPlan) -> Vec<(&'static s
 #[derive(Default)]
 struct Columns {
     strips: Vec<Vec<[f32; 2]>>,
+    /// Colours per strip, for entities whose colours change.
     colours: Vec<rerun::Color>,
-    radii: Vec<rerun::Radius>,
     /// Strips per row.
     lengths: Vec<usize>,
 }
@@ -142,8 +143,8 @@ impl GeometryBuffer {
             let columns = self.entities.entry(entity).or_default();
             columns.lengths.push(row.strips.len());
             self.points += row.strips.iter().map(Vec::len).sum::<usize>();
-            columns.radii.extend(std::iter::repeat_n(rerun::Radius::new_ui_points(row.radius), row.strips.len()));
-            columns.colours.extend(row.colours.iter().map(|[r, g, b]| rerun::Color::from_rgb(*r, *g, *b)));
+            let colours = row.colours.into_iter().flatten();
+            columns.colours.extend(colours.map(|[r, g, b]| rerun::Color::from_rgb(r, g, b)));
             columns.strips.extend(row.strips);
         }
     }
@@ -159,19 +160,11 @@ impl GeometryBuffer {
         self.points = 0;
         let mut out = Vec::with_capacity(self.entities.len());
         for (entity, columns) in std::mem::take(&mut self.entities) {
-            let rows = columns.lengths.len();
-            let mut serialized: Vec<SerializedComponentColumn> = LineStrips2D::new(columns.strips)
-                .with_colors(columns.colours)
-                .with_radii(columns.radii)
-                .columns(columns.lengths)?
-                .collect();
-            let order = if entity == schema::SPATIAL_CONTACT { 10.0_f32 } else { 0.0 };
-            serialized.extend(
-                LineStrips2D::update_fields()
-                    .with_many_draw_order(std::iter::repeat_n(order, rows))
-                    .columns_of_unit_batches()?,
-            );
-            out.push((entity, serialized));
+            let mut strips = LineStrips2D::new(columns.strips);
+            if !columns.colours.is_empty() {
+                strips = strips.with_colors(columns.colours);
+            }
+            out.push((entity, strips.columns(columns.lengths)?.collect()));
         }
         Ok(out)
     }

@@ -7,7 +7,11 @@ pub mod cadence;
 pub mod catalog;
 pub mod geometry;
 pub mod mcap;
+pub mod properties;
 pub mod rerun;
+pub mod series;
+pub mod slip_front;
+pub mod spacetime;
 pub mod viewer;
 
 use std::fmt;

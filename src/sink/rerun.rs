@@ -1,25 +1,30 @@
-//! The Rerun sink: every recorded step as time series on the `sim_time` and `step` timelines,
-//! a spatial view of the deforming block with its contact coloured by state, a space-time
-//! view of slip rate, the catalog as text logs, and a default blueprint ([`crate::sink::blueprint`]).
+//! The Rerun sink: every recorded step as time series on the `sim_time` and `step` timelines
+//! ([`crate::sink::series`]), the slip front's state lanes and profiles
+//! ([`crate::sink::slip_front`]), a spatial view of the deforming block with its contact
+//! coloured by state, the space-time map ([`crate::sink::spacetime`]), the catalog as text logs,
+//! the run's properties ([`crate::sink::properties`]) and a default blueprint
+//! ([`crate::sink::blueprint`]).
 //!
-//! Time series are buffered and sent as columns (`send_columns` bypasses Rerun's batcher, so
-//! many steps go as one chunk), at least every second and every 512 rows
-//! ([`crate::sink::cadence`]); geometry is logged row by row on recorded steps. While no
-//! segment slips only every `stick_every`-th step is recorded.
+//! Rows are buffered and sent as columns (`send_columns` bypasses Rerun's batcher, so many
+//! steps go as one chunk), at least every second and every 512 rows ([`crate::sink::cadence`]).
+//! While no segment slips only every `stick_every`-th step is recorded.
 
-use rerun::{RecordingStream, Scalars, SeriesLines, TimeColumn};
+use rerun::{RecordingStream, TimeColumn};
 
 use crate::catalog::events::Catalog;
 use crate::frame::Ending;
 use crate::frame::{Frame, Layout, Needs, SceneKind};
-use crate::record::colormap::{POSITION, SLIP_RATE, sample};
-use crate::record::digest::SeriesDigest;
-use crate::record::schema::{self, Decimator, RecordingPlan, RunEnding, RunInfo, Source, selection, series_plan};
-use crate::sink::blueprint::default_blueprint;
-use crate::sink::cadence::{self, Cadence};
-use crate::sink::geometry::{GeometryBuffer, SPACETIME_ROWS, spacetime_width};
+use crate::record::schema::{
+    self, Decimator, RecordingPlan, RunEnding, RunInfo, ViewDecimator, selection, series_plan,
+};
+use crate::sink::blueprint::{self, Contents};
+use crate::sink::cadence::Cadence;
+use crate::sink::geometry::{self, GeometryBuffer};
+use crate::sink::series::SeriesColumns;
+use crate::sink::slip_front::SlipFront;
+use crate::sink::spacetime::SpaceTime;
 use crate::sink::viewer::DetachedViewer;
-use crate::sink::{Sink, SinkError};
+use crate::sink::{Sink, SinkError, properties};
 
 /// Geometry points buffered before every buffer is sent (large meshes flush sooner).
 const GEOMETRY_POINTS_PER_CHUNK: usize = 2_000_000;
@@ -29,20 +34,21 @@ pub struct RerunSink {
     rec: Option<RecordingStream>,
     plan: RecordingPlan,
     layout: Option<Layout>,
-    series: Vec<(String, Source)>,
     steps: Vec<i64>,
     times: Vec<f64>,
-    values: Vec<Vec<f64>>,
-    /// The digest of each series' rows so far ([`SeriesDigest`]).
-    digests: Vec<SeriesDigest>,
+    series: SeriesColumns,
+    /// Which recorded steps get a frame of the drawn views, and those buffered.
+    views: ViewDecimator,
+    view_steps: Vec<i64>,
+    view_times: Vec<f64>,
+    slip_front: Option<SlipFront>,
     /// When the buffered rows go to the file ([`Cadence`]).
     cadence: Cadence,
     rows: u64,
     geometry: GeometryBuffer,
     decimator: Decimator,
     last_time: f64,
-    /// Peak slip rate per (time row, segment) for the space-time image.
-    spacetime: Vec<f32>,
+    spacetime: Option<SpaceTime>,
     needs: Needs,
 }
 
@@ -58,18 +64,20 @@ impl RerunSink {
         Self {
             rec: Some(rec),
             decimator: Decimator::new(&plan),
+            views: ViewDecimator::new(&plan),
+            view_steps: Vec::new(),
+            view_times: Vec::new(),
             plan,
             layout: None,
-            series: Vec::new(),
             steps: Vec::new(),
             times: Vec::new(),
-            values: Vec::new(),
-            digests: Vec::new(),
+            series: SeriesColumns::default(),
+            slip_front: None,
             cadence: Cadence::default(),
             rows: 0,
             geometry: GeometryBuffer::default(),
             last_time: 0.0,
-            spacetime: Vec::new(),
+            spacetime: None,
             needs,
         }
     }
@@ -78,27 +86,30 @@ impl RerunSink {
         self.rec.as_ref().expect("the stream lives until finish")
     }
 
-    /// Appends one recorded step to the buffered columns, flushing them when full.
-    fn write_row(&mut self, frame: &Frame) -> Result<(), SinkError> {
+    /// Appends one recorded step to the buffered columns, flushing them when due; `last` marks
+    /// the run's last frame, which always gets a view frame.
+    fn write_row(&mut self, frame: &Frame, last: bool) -> Result<(), SinkError> {
         self.steps.push(frame.step as i64);
         self.times.push(frame.time);
-        for (((_, source), values), digest) in self.series.iter().zip(&mut self.values).zip(&mut self.digests) {
-            let value = source.of(frame);
-            values.push(value);
-            digest.add(frame.step as i64, frame.time, value);
-        }
+        self.series.push(frame);
         self.rows += 1;
         self.last_time = frame.time;
-        if self.plan.spec.spatial {
-            // Recorded steps only, so that a replayed log draws the same image.
-            let segments = frame.segments.len();
-            let row = ((frame.time / self.plan.t_end * SPACETIME_ROWS as f64) as usize).min(SPACETIME_ROWS - 1);
-            for (k, s) in frame.segments.iter().enumerate() {
-                let cell = &mut self.spacetime[row * segments + k];
-                *cell = cell.max(s.slip_rate as f32);
-            }
+        if let Some(front) = &mut self.slip_front {
+            front.push_state(frame);
+        }
+        if let Some(map) = &mut self.spacetime {
+            map.push(frame.time, frame.segments.iter().map(|s| s.slip_rate));
+        }
+        let last = last || frame.time >= self.plan.t_end * (1.0 - 1e-12);
+        let view = if last { self.views.keep_last(frame) } else { self.views.keep(frame) };
+        if self.plan.spec.spatial && view {
+            self.view_steps.push(frame.step as i64);
+            self.view_times.push(frame.time);
             let layout = self.layout.as_ref().expect("begin() ran");
             self.geometry.push(frame, layout, &self.plan);
+            if let Some(front) = &mut self.slip_front {
+                front.push_profiles(frame);
+            }
         }
         if self.cadence.row() || self.geometry.points() >= GEOMETRY_POINTS_PER_CHUNK {
             self.flush_columns()?;
@@ -108,58 +119,27 @@ impl RerunSink {
         Ok(())
     }
 
-    /// Sends the buffered rows of every series and geometry entity, one chunk each.
+    /// Sends the buffered rows of every entity, one chunk each.
     fn flush_columns(&mut self) -> Result<(), SinkError> {
         if self.steps.is_empty() {
             return Ok(());
         }
-        let steps = TimeColumn::new_sequence(schema::STEP, std::mem::take(&mut self.steps));
-        let times = TimeColumn::new_duration_secs(schema::SIM_TIME, std::mem::take(&mut self.times));
+        let columns = |steps: &mut Vec<i64>, times: &mut Vec<f64>| {
+            [
+                TimeColumn::new_sequence(schema::STEP, std::mem::take(steps)),
+                TimeColumn::new_duration_secs(schema::SIM_TIME, std::mem::take(times)),
+            ]
+        };
+        let times = columns(&mut self.steps, &mut self.times);
+        let view_times = columns(&mut self.view_steps, &mut self.view_times);
         let rec = self.rec.as_ref().expect("the stream lives until finish");
-        for ((path, _), values) in self.series.iter().zip(&mut self.values) {
-            let column = Scalars::new(std::mem::take(values)).columns_of_unit_batches().map_err(rerun_error)?;
-            rec.send_columns(path.as_str(), [steps.clone(), times.clone()], column).map_err(rerun_error)?;
+        self.series.send(rec, &times).map_err(rerun_error)?;
+        if let Some(front) = &mut self.slip_front {
+            front.send(rec, &view_times).map_err(rerun_error)?;
         }
         for (entity, columns) in self.geometry.take().map_err(rerun_error)? {
-            rec.send_columns(entity, [steps.clone(), times.clone()], columns).map_err(rerun_error)?;
+            rec.send_columns(entity, view_times.clone(), columns).map_err(rerun_error)?;
         }
-        Ok(())
-    }
-
-    /// The space-time image: rows are time bins over `[0, t_end]`, columns segments, colour
-    /// the bin's peak slip rate on a log scale from a hundredth of the threshold to the peak.
-    fn log_spacetime(&self) -> Result<(), SinkError> {
-        let segments = self.layout.as_ref().map_or(1, |l| l.segments.len());
-        let width = spacetime_width(segments);
-        let px = width / segments;
-        let floor = self.plan.slip_rate_threshold / 100.0;
-        let peak = self.spacetime.iter().fold(0.0_f32, |m, v| m.max(*v)) as f64;
-        let top = peak.max(self.plan.slip_rate_threshold * 10.0);
-        let mut rgb = Vec::with_capacity(width * SPACETIME_ROWS * 3);
-        for row in 0..SPACETIME_ROWS {
-            for k in 0..segments {
-                let rate = self.spacetime[row * segments + k] as f64;
-                let t =
-                    if rate <= floor { 0.0 } else { ((rate / floor).log10() / (top / floor).log10()).clamp(0.0, 1.0) };
-                let colour = sample(&SLIP_RATE, t);
-                for _ in 0..px {
-                    rgb.extend_from_slice(&colour);
-                }
-            }
-        }
-        let rec = self.rec();
-        rec.log_static(schema::SPACETIME_IMAGE, &rerun::Image::from_rgb24(rgb, [width as u32, SPACETIME_ROWS as u32]))
-            .map_err(rerun_error)?;
-        rec.log_static(
-            format!("{}/scale", schema::SPACETIME),
-            &rerun::TextDocument::new(format!(
-                "Space-time view: segments from the left across ({px} px each), time down ({:.4} s per row over [0, {} s]). \
-                 Colour: peak slip rate in the row, log scale from {floor:.3e} m/s (black) to {top:.3e} m/s (yellow).",
-                self.plan.t_end / SPACETIME_ROWS as f64,
-                self.plan.t_end
-            )),
-        )
-        .map_err(rerun_error)?;
         Ok(())
     }
 
@@ -221,43 +201,48 @@ impl Sink for RerunSink {
     fn begin(&mut self, layout: &Layout) -> Result<(), SinkError> {
         let (segments, nodes) = selection(&self.plan.spec, layout);
         let spatial = self.plan.spec.spatial && layout.kind != SceneKind::Point;
+        let front = spatial.then(|| SlipFront::new(layout, &segments, self.plan.slip_rate_threshold, self.plan.mu_k));
         self.needs.surface_nodes = !nodes.is_empty();
         self.needs.mesh = spatial && layout.mesh.is_some();
+        self.needs.segment_state |= front.as_ref().is_some_and(SlipFront::needs_state);
         let plan = series_plan(layout, &segments, &nodes, &self.plan.spec.quantities);
-        let rec = self.rec.as_ref().expect("the stream lives until finish");
-        for series in &plan {
-            let [r, g, b] = series.position.map_or([200, 200, 200], |x| sample(&POSITION, x));
-            rec.log_static(
-                series.path.as_str(),
-                &SeriesLines::new().with_names([series.label.as_str()]).with_colors([rerun::Color::from_rgb(r, g, b)]),
-            )
-            .map_err(rerun_error)?;
-        }
         let info = RunInfo::new(&self.plan, layout, &segments, &nodes, &plan, spatial);
+        let rec = self.rec.as_ref().expect("the stream lives until finish");
         let text = toml::to_string(&info).map_err(|e| SinkError(format!("cannot describe the run: {e}")))?;
         rec.log_static(
             schema::RUN_INFO,
             &rerun::TextDocument::new(text).with_media_type(rerun::MediaType::plain_text()),
         )
         .map_err(rerun_error)?;
-        default_blueprint(layout, &segments, &nodes, spatial, self.plan.spec.magnification)
-            .send(rec, rerun::blueprint::BlueprintActivation { make_active: true, make_default: true })
-            .map_err(rerun_error)?;
+        properties::log(rec, &self.plan, &info).map_err(rerun_error)?;
+        self.series.begin(rec, plan).map_err(rerun_error)?;
+        if let Some(front) = &front {
+            front.begin(rec, layout).map_err(rerun_error)?;
+            geometry::log_styles(rec, layout).map_err(rerun_error)?;
+        }
+        let contents = Contents {
+            layout,
+            segments: &segments,
+            nodes: &nodes,
+            spatial,
+            magnification: self.plan.spec.magnification,
+            t_end: self.plan.t_end,
+            profiles: front.as_ref().map_or_else(Vec::new, SlipFront::profile_entities),
+        };
+        blueprint::send(rec, &contents).map_err(rerun_error)?;
         // The columns go to the file directly (`send_columns` bypasses the batcher): without a
         // flush here, a fast run's first columns can reach the file before the run description,
         // and a file cut early (an interrupted run, a full disk) would lack it.
         flush(rec)?;
-        self.values = vec![Vec::with_capacity(cadence::ROWS); plan.len()];
-        self.digests = vec![SeriesDigest::default(); plan.len()];
-        self.series = plan.into_iter().map(|s| (s.path, s.source)).collect();
-        self.spacetime = vec![0.0; SPACETIME_ROWS * layout.segments.len()];
+        self.slip_front = front;
+        self.spacetime = spatial.then(|| SpaceTime::new(self.plan.t_end, layout.segments.len()));
         self.plan.spec.spatial = spatial;
         self.layout = Some(layout.clone());
         Ok(())
     }
 
     fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
-        if self.decimator.keep(frame) { self.write_row(frame) } else { Ok(()) }
+        if self.decimator.keep(frame) { self.write_row(frame, false) } else { Ok(()) }
     }
 
     fn finish(&mut self, ending: Ending, last: Option<&Frame>, catalog: &Catalog) -> Result<(), SinkError> {
@@ -265,16 +250,16 @@ impl Sink for RerunSink {
             return Ok(());
         }
         let mut result = match last {
-            Some(frame) if self.layout.is_some() && self.decimator.keep_last(frame) => self.write_row(frame),
+            Some(frame) if self.layout.is_some() && self.decimator.keep_last(frame) => self.write_row(frame, true),
             _ => Ok(()),
         };
         result = result.and(self.flush_columns());
-        if self.layout.is_some() {
-            if self.plan.spec.spatial {
-                result = result.and(self.log_spacetime());
+        if let Some(layout) = &self.layout {
+            if let Some(map) = &self.spacetime {
+                result = result.and(map.log(self.rec(), layout, self.plan.slip_rate_threshold).map_err(rerun_error));
             }
             result = result.and(self.log_catalog(catalog));
-            let digests = self.series.iter().zip(&self.digests).map(|((path, _), d)| (path.clone(), d.hex())).collect();
+            let digests = self.series.digests();
             let summary = RunEnding::new(ending, self.last_time, self.rows, catalog, digests);
             let text = toml::to_string(&summary).map_err(|e| SinkError(format!("cannot describe the ending: {e}")))?;
             result = result.and(

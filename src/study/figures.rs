@@ -65,7 +65,7 @@ pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, 
     let mut displacement = Vec::new();
     let nodes = pick(&info.recorded_nodes, &info.probe_nodes);
     for (rank, &i) in nodes.iter().enumerate() {
-        if let Some(series) = recording.series.get(&schema::node_entity(info.recorded_nodes[i], 0)) {
+        if let Some(series) = recording.series.get(&schema::instance_series(schema::node_entity(0), i)) {
             displacement.push(Line { label: info.node_labels[i].clone(), series, colour: colour(rank, nodes.len()) });
         }
     }
@@ -86,7 +86,7 @@ pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, 
             .iter()
             .enumerate()
             .filter_map(|(rank, &i)| {
-                recording.series.get(&schema::segment_entity(info.recorded_segments[i], q)).map(|series| Line {
+                recording.series.get(&schema::instance_series(&schema::segment_entity(q), i)).map(|series| Line {
                     label: info.segment_labels[i].clone(),
                     series,
                     colour: colour(rank, segments.len()),
@@ -109,7 +109,13 @@ pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, 
     let rates: Vec<(f64, &Series)> = info
         .recorded_segments
         .iter()
-        .filter_map(|&k| recording.series.get(&schema::segment_entity(k, Quantity::SlipRate)).map(|s| (k as f64, s)))
+        .enumerate()
+        .filter_map(|(i, &k)| {
+            recording
+                .series
+                .get(&schema::instance_series(&schema::segment_entity(Quantity::SlipRate), i))
+                .map(|s| (k as f64, s))
+        })
         .collect();
     if rates.is_empty() {
         return Ok(vec![fig8, fig9]);

@@ -1,0 +1,109 @@
+//! Compaction of a finished recording: each entity's consecutive chunks merged into few large
+//! ones.
+//!
+//! During a run the recording goes to the disk in small chunks, at least every second and every
+//! 512 rows ([`crate::sink::cadence`]), so that a killed run loses little. A viewer and a
+//! dataset server read few large chunks faster than many small ones, so once the run has ended
+//! the file is rewritten with every entity's chunks concatenated up to [`MAX_ROWS`] rows,
+//! written beside it and renamed over it: at any moment the path holds either the file the
+//! run wrote or its complete compacted copy.
+
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::{BufReader, BufWriter};
+use std::path::{Path, PathBuf};
+
+use rerun::external::re_build_info::CrateVersion;
+use rerun::external::re_log_encoding::{DecoderApp, Encoder, EncodingOptions};
+use rerun::log::{Chunk, LogMsg};
+
+/// The most rows one compacted chunk holds.
+pub const MAX_ROWS: usize = 65_536;
+
+/// Chunks before and after.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Compacted {
+    pub chunks_before: usize,
+    pub chunks_after: usize,
+}
+
+/// Rewrites the recording at `path` with its chunks merged; on any error the file is left as
+/// it was.
+pub fn compact(path: &Path) -> Result<Compacted, String> {
+    let temporary = temporary_path(path);
+    let result = write_compacted(path, &temporary);
+    match result {
+        Ok(counts) => std::fs::rename(&temporary, path)
+            .map(|()| counts)
+            .map_err(|e| format!("cannot replace {} by its compacted copy: {e}", path.display())),
+        Err(e) => {
+            let _ = std::fs::remove_file(&temporary);
+            Err(e)
+        }
+    }
+}
+
+/// `.{name}.compacting` beside `path`.
+fn temporary_path(path: &Path) -> PathBuf {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    path.with_file_name(format!(".{name}.compacting"))
+}
+
+/// Streams `path` into `out`: chunks held per (store, entity, static or not) and merged while
+/// concatenable; every other message (store info, blueprint activation) first sends what is
+/// held, so it keeps its place after the chunks it follows.
+fn write_compacted(path: &Path, out: &Path) -> Result<Compacted, String> {
+    let read_error = |e: &dyn std::fmt::Display| format!("cannot compact {}: {e}", path.display());
+    let write_error = |e: &dyn std::fmt::Display| format!("cannot write {}: {e}", out.display());
+    let file = File::open(path).map_err(|e| read_error(&e))?;
+    let decoder = DecoderApp::decode_eager(BufReader::new(file)).map_err(|e| read_error(&e))?;
+    let writer = BufWriter::new(File::create(out).map_err(|e| write_error(&e))?);
+    let mut encoder = Encoder::new_eager(CrateVersion::LOCAL, EncodingOptions::PROTOBUF_COMPRESSED, writer)
+        .map_err(|e| write_error(&e))?;
+    // Each held chunk with the position of its first part, so that the file keeps the order
+    // the run wrote: its description first, its ending record last.
+    let mut held: BTreeMap<(String, String, bool), (usize, rerun::StoreId, Chunk)> = BTreeMap::new();
+    let mut counts = Compacted { chunks_before: 0, chunks_after: 0 };
+    let mut send_held = |held: &mut BTreeMap<_, (usize, rerun::StoreId, Chunk)>, encoder: &mut Encoder<_>| {
+        let mut chunks: Vec<(usize, rerun::StoreId, Chunk)> = std::mem::take(held).into_values().collect();
+        chunks.sort_by_key(|(first, _, _)| *first);
+        for (_, store, chunk) in chunks {
+            let message = chunk.to_arrow_msg().map_err(|e| write_error(&e))?;
+            encoder.append(&LogMsg::ArrowMsg(store, message)).map_err(|e| write_error(&e))?;
+            counts.chunks_after += 1;
+        }
+        Ok::<(), String>(())
+    };
+    for message in decoder {
+        let message = message.map_err(|e| read_error(&e))?;
+        let LogMsg::ArrowMsg(store, arrow) = &message else {
+            send_held(&mut held, &mut encoder)?;
+            encoder.append(&message).map_err(|e| write_error(&e))?;
+            continue;
+        };
+        counts.chunks_before += 1;
+        let chunk = Chunk::from_arrow_msg(arrow).map_err(|e| read_error(&e))?;
+        let key = (format!("{store:?}"), chunk.entity_path().to_string(), chunk.is_static());
+        let position = counts.chunks_before;
+        let (first, merged) = match held.remove(&key) {
+            Some((first, _, before))
+                if before.num_rows() + chunk.num_rows() <= MAX_ROWS && before.concatenable(&chunk) =>
+            {
+                (first, Chunk::concat_and_sort(&before, &chunk).map_err(|e| read_error(&e))?)
+            }
+            Some(before) => {
+                let mut single = BTreeMap::from([(key.clone(), before)]);
+                send_held(&mut single, &mut encoder)?;
+                (position, chunk)
+            }
+            None => (position, chunk),
+        };
+        held.insert(key, (first, store.clone(), merged));
+    }
+    send_held(&mut held, &mut encoder)?;
+    encoder.finish().map_err(|e| write_error(&e))?;
+    let writer = encoder.into_inner().map_err(|e| write_error(&e))?;
+    let file = writer.into_inner().map_err(|e| write_error(&e))?;
+    file.sync_all().map_err(|e| write_error(&e))?;
+    Ok(counts)
+}

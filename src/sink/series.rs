@@ -1,0 +1,95 @@
+//! The recording's scalar time series as buffered columns: one multi-instance `Scalars`
+//! entity per quantity (one instance per recorded segment or node) and one per total, each with
+//! a static `SeriesLines` naming and colouring its instances, as Rerun recommends for many
+//! related series.
+
+use std::collections::BTreeMap;
+
+use rerun::{RecordingStream, Scalars, SeriesLines, TimeColumn};
+
+use crate::frame::Frame;
+use crate::record::colormap::{POSITION, sample};
+use crate::record::digest::SeriesDigest;
+use crate::record::schema::{EntitySpec, Source};
+
+/// One entity's buffered rows.
+struct Columns {
+    path: String,
+    sources: Vec<Source>,
+    /// Row-major: `sources.len()` values per row.
+    values: Vec<f64>,
+    /// One per instance, over every row written so far.
+    digests: Vec<SeriesDigest>,
+    names: Vec<String>,
+}
+
+/// The scalar entities of a run, buffered between flushes.
+#[derive(Default)]
+pub struct SeriesColumns {
+    entities: Vec<Columns>,
+    rows: usize,
+}
+
+impl SeriesColumns {
+    /// Logs each entity's static `SeriesLines` (names and colours by position along the
+    /// surface) and prepares its buffers.
+    pub fn begin(&mut self, rec: &RecordingStream, plan: Vec<EntitySpec>) -> rerun::RecordingStreamResult<()> {
+        for spec in &plan {
+            let colours = spec.positions.iter().map(|p| {
+                let [r, g, b] = p.map_or([200, 200, 200], |x| sample(&POSITION, x));
+                rerun::Color::from_rgb(r, g, b)
+            });
+            rec.log_static(
+                spec.path.as_str(),
+                &SeriesLines::new().with_names(spec.labels.iter().map(String::as_str)).with_colors(colours),
+            )?;
+        }
+        self.entities = plan
+            .into_iter()
+            .map(|spec| Columns {
+                names: spec.series_names(),
+                digests: vec![SeriesDigest::default(); spec.sources.len()],
+                path: spec.path,
+                sources: spec.sources,
+                values: Vec::new(),
+            })
+            .collect();
+        Ok(())
+    }
+
+    /// Appends `frame`'s values to every entity.
+    pub fn push(&mut self, frame: &Frame) {
+        for entity in &mut self.entities {
+            for (source, digest) in entity.sources.iter().zip(&mut entity.digests) {
+                let value = source.of(frame);
+                entity.values.push(value);
+                digest.add(frame.step as i64, frame.time, value);
+            }
+        }
+        self.rows += 1;
+    }
+
+    /// Sends the buffered rows, one chunk per entity, on the given time columns.
+    pub fn send(&mut self, rec: &RecordingStream, times: &[TimeColumn; 2]) -> Result<(), String> {
+        let rows = std::mem::take(&mut self.rows);
+        if rows == 0 {
+            return Ok(());
+        }
+        for entity in &mut self.entities {
+            let width = entity.sources.len();
+            let column = Scalars::new(std::mem::take(&mut entity.values))
+                .columns(std::iter::repeat_n(width, rows))
+                .map_err(|e| e.to_string())?;
+            rec.send_columns(entity.path.as_str(), times.clone(), column).map_err(|e| e.to_string())?;
+        }
+        Ok(())
+    }
+
+    /// The digest of every series written so far, by the name a reader gives it.
+    pub fn digests(&self) -> BTreeMap<String, String> {
+        self.entities
+            .iter()
+            .flat_map(|e| e.names.iter().cloned().zip(e.digests.iter().map(SeriesDigest::hex)))
+            .collect()
+    }
+}

@@ -1,0 +1,179 @@
+//! The slip front, scrubbable: where along the surface it slips, and when.
+//!
+//! * `contact/state`: a `StateChange` lane per recorded segment (`stick` or `slip`, the event
+//!   threshold on the slip rate), written only where a segment changes state, so a rupture
+//!   reads as lanes switching one after another.
+//! * `profile/*`: bar charts over the segments' centres (x in m) at every recorded step, so the
+//!   playhead shows the profile along the surface: tangential traction `f_t` between the static
+//!   strength `μ_k f_n / R*` (the superloading surface) and the kinetic strength `μ_k f_n` (the
+//!   normal sliding-yield surface), the slip rate, and the degree of structure `1/R*`. The
+//!   current strength `(R/R*) μ_k f_n` (the subloading surface) is `|f_t|` itself: the surface
+//!   passes through the current traction ([model](../../docs/model.md#surfaces-and-state)).
+
+use rerun::datatypes::TensorData;
+use rerun::{BarChart, RecordingStream, StateChange, StateConfiguration, TimeColumn};
+
+use crate::frame::{Frame, Layout, SceneKind};
+use crate::record::schema;
+
+/// The profile entities, what each shows of a segment, and its bars' colour and relative
+/// width: the strengths wide and pale behind the traction.
+const PROFILES: [(&str, Profile, [u8; 4], f32); 5] = [
+    (schema::PROFILE_STATIC_STRENGTH, Profile::StaticStrength, [190, 190, 190, 255], 0.9),
+    (schema::PROFILE_KINETIC_STRENGTH, Profile::KineticStrength, [120, 160, 210, 255], 0.7),
+    (schema::PROFILE_TRACTION, Profile::Traction, [230, 120, 40, 255], 0.4),
+    (schema::PROFILE_SLIP_RATE, Profile::SlipRate, [220, 60, 60, 255], 0.8),
+    (schema::PROFILE_STRUCTURE, Profile::Structure, [90, 170, 110, 255], 0.8),
+];
+
+#[derive(Debug, Clone, Copy)]
+enum Profile {
+    StaticStrength,
+    KineticStrength,
+    Traction,
+    SlipRate,
+    Structure,
+}
+
+/// The state lanes and profiles of a run, buffered between flushes.
+pub struct SlipFront {
+    threshold: f64,
+    mu_k: Option<f64>,
+    /// The recorded segments (the lanes).
+    segments: Vec<usize>,
+    /// Whether the profiles are written (block scenes of more than one segment).
+    profiles: bool,
+    last_state: Option<Vec<bool>>,
+    state_steps: Vec<i64>,
+    state_times: Vec<f64>,
+    states: Vec<&'static str>,
+    /// One tensor per row and profile, profile-major.
+    bars: Vec<Vec<TensorData>>,
+}
+
+impl SlipFront {
+    /// The slip front of a run over `layout` recording `segments`; `mu_k` scales the strength
+    /// profiles (without it only the traction, slip rate and structure profiles are written).
+    pub fn new(layout: &Layout, segments: &[usize], threshold: f64, mu_k: Option<f64>) -> Self {
+        Self {
+            threshold,
+            mu_k,
+            segments: segments.to_vec(),
+            profiles: layout.kind == SceneKind::Block && layout.segments.len() > 1,
+            last_state: None,
+            state_steps: Vec::new(),
+            state_times: Vec::new(),
+            states: Vec::new(),
+            bars: vec![Vec::new(); PROFILES.len()],
+        }
+    }
+
+    /// Whether the profiles need the full segment state (`f_n`, `R`, `R*`).
+    pub fn needs_state(&self) -> bool {
+        self.profiles
+    }
+
+    /// The profile entities this run writes.
+    pub fn profile_entities(&self) -> Vec<&'static str> {
+        PROFILES.iter().filter(|p| self.writes(p.1)).map(|p| p.0).collect()
+    }
+
+    fn writes(&self, profile: Profile) -> bool {
+        self.profiles && (self.mu_k.is_some() || !matches!(profile, Profile::StaticStrength | Profile::KineticStrength))
+    }
+
+    /// Logs the static parts: the lanes' states and colours, the bars' positions and widths.
+    pub fn begin(&self, rec: &RecordingStream, layout: &Layout) -> rerun::RecordingStreamResult<()> {
+        rec.log_static(
+            schema::CONTACT_STATE,
+            &StateConfiguration::new()
+                .with_values([schema::STICK, schema::SLIP])
+                .with_labels([" ", "slip"])
+                .with_colors([0x4682C8FF_u32, 0xF0782AFF_u32]),
+        )?;
+        if !self.profiles {
+            return Ok(());
+        }
+        let centres: Vec<f64> = layout.segments.iter().map(|s| 0.5 * (s.left + s.right)).collect();
+        for (entity, profile, [r, g, b, a], share) in PROFILES {
+            if !self.writes(profile) {
+                continue;
+            }
+            let widths: Vec<f32> = layout.segments.iter().map(|s| (share as f64 * (s.right - s.left)) as f32).collect();
+            rec.log_static(
+                entity,
+                &BarChart::update_fields()
+                    .with_abscissa(TensorData::from(centres.clone()))
+                    .with_widths(widths)
+                    .with_color(rerun::Color::from_unmultiplied_rgba(r, g, b, a)),
+            )?;
+        }
+        Ok(())
+    }
+
+    /// Adds a recorded frame: a state row where a segment changed.
+    pub fn push_state(&mut self, frame: &Frame) {
+        let state: Vec<bool> = self.segments.iter().map(|&k| frame.segments[k].slip_rate > self.threshold).collect();
+        if self.last_state.as_ref() != Some(&state) {
+            self.state_steps.push(frame.step as i64);
+            self.state_times.push(frame.time);
+            self.states.extend(state.iter().map(|&s| if s { schema::SLIP } else { schema::STICK }));
+            self.last_state = Some(state);
+        }
+    }
+
+    /// Adds a view frame's profiles.
+    pub fn push_profiles(&mut self, frame: &Frame) {
+        if !self.profiles {
+            return;
+        }
+        for (i, (_, profile, _, _)) in PROFILES.iter().enumerate() {
+            if self.writes(*profile) {
+                let values: Vec<f32> = frame.segments.iter().map(|s| value(*profile, s, self.mu_k) as f32).collect();
+                self.bars[i].push(TensorData::from(values));
+            }
+        }
+    }
+
+    /// Sends the buffered rows: the profiles on the view frames' `times`, the state rows on
+    /// their own.
+    pub fn send(&mut self, rec: &RecordingStream, times: &[TimeColumn; 2]) -> Result<(), String> {
+        let error = |e: &dyn std::fmt::Display| e.to_string();
+        for (i, (entity, _, _, _)) in PROFILES.iter().enumerate() {
+            let rows = std::mem::take(&mut self.bars[i]);
+            if rows.is_empty() {
+                continue;
+            }
+            let columns =
+                BarChart::update_fields().with_many_values(rows).columns_of_unit_batches().map_err(|e| error(&e))?;
+            rec.send_columns(*entity, times.clone(), columns).map_err(|e| error(&e))?;
+        }
+        if self.state_steps.is_empty() {
+            return Ok(());
+        }
+        let rows = self.state_steps.len();
+        let state_times = [
+            TimeColumn::new_sequence(schema::STEP, std::mem::take(&mut self.state_steps)),
+            TimeColumn::new_duration_secs(schema::SIM_TIME, std::mem::take(&mut self.state_times)),
+        ];
+        let columns = StateChange::update_fields()
+            .with_state(std::mem::take(&mut self.states))
+            .columns(std::iter::repeat_n(self.segments.len(), rows))
+            .map_err(|e| error(&e))?;
+        rec.send_columns(schema::CONTACT_STATE, state_times, columns).map_err(|e| error(&e))?;
+        Ok(())
+    }
+}
+
+/// A segment's value in `profile`; the strengths are the superloading surface `μ_k f_n / R*`
+/// and the normal sliding-yield surface `μ_k f_n`.
+fn value(profile: Profile, s: &crate::frame::SegmentSample, mu_k: Option<f64>) -> f64 {
+    let kinetic_strength = mu_k.unwrap_or(f64::NAN) * s.traction_n;
+    match profile {
+        Profile::StaticStrength => kinetic_strength * s.structure,
+        Profile::KineticStrength => kinetic_strength,
+        Profile::Traction => s.traction_t,
+        Profile::SlipRate => s.slip_rate,
+        Profile::Structure => s.structure,
+    }
+}

@@ -1,0 +1,142 @@
+//! The space-time map: the peak slip rate of every segment (down, from x = 0 at the top) in
+//! every time bin (across), as values, with time running the same way as the state lanes. It
+//! is a depth image of `log10` slip rate coloured by Rerun's own colormap over a fixed range,
+//! so hovering shows the value; tick labels give x in m and `sim_time` in s, and the cursor
+//! ([`crate::sink::geometry`]) marks the playhead.
+
+use rerun::RecordingStream;
+
+use crate::frame::Layout;
+use crate::record::schema;
+
+/// Time bins of the map (its columns), spread over `[0, t_end]`.
+pub const TIME_BINS: usize = 1000;
+/// Target height of the map in view units; each segment gets an equal share.
+const HEIGHT: usize = 250;
+
+/// Height of one segment's lane of the map (view units).
+fn lane_height(segments: usize) -> usize {
+    (HEIGHT / segments.max(1)).max(1)
+}
+
+/// Height of the map for `segments` segments (view units).
+pub fn map_height(segments: usize) -> usize {
+    segments.max(1) * lane_height(segments)
+}
+
+/// The peak slip rate per (segment, time bin) of the recorded steps.
+pub struct SpaceTime {
+    t_end: f64,
+    segments: usize,
+    /// Row-major: a row of `TIME_BINS` per segment.
+    peaks: Vec<f32>,
+}
+
+impl SpaceTime {
+    pub fn new(t_end: f64, segments: usize) -> Self {
+        Self { t_end, segments, peaks: vec![0.0; TIME_BINS * segments] }
+    }
+
+    /// Adds a recorded step's slip rates (recorded steps only, so that a replayed log draws
+    /// the same map).
+    pub fn push(&mut self, time: f64, rates: impl Iterator<Item = f64>) {
+        let bin = ((time / self.t_end * TIME_BINS as f64) as usize).min(TIME_BINS - 1);
+        for (k, rate) in rates.take(self.segments).enumerate() {
+            let cell = &mut self.peaks[k * TIME_BINS + bin];
+            *cell = cell.max(rate as f32);
+        }
+    }
+
+    /// Logs the map and its tick labels (static): `log10` of the peak slip rate (m/s), from a
+    /// hundredth of the event `threshold` (anything slower shows as that floor) to the peak.
+    pub fn log(&self, rec: &RecordingStream, layout: &Layout, threshold: f64) -> rerun::RecordingStreamResult<()> {
+        let floor = (threshold / 100.0).log10() as f32;
+        let peak = self.peaks.iter().fold(0.0_f32, |m, v| m.max(*v)) as f64;
+        let top = peak.max(threshold * 10.0).log10() as f32;
+        let bytes: Vec<u8> = self
+            .peaks
+            .iter()
+            .map(|&v| if v > 0.0 { v.log10().max(floor) } else { floor })
+            .flat_map(f32::to_le_bytes)
+            .collect();
+        let format = rerun::components::ImageFormat::depth(
+            [TIME_BINS as u32, self.segments as u32],
+            rerun::datatypes::ChannelDatatype::F32,
+        );
+        rec.log_static(
+            schema::SPACETIME_IMAGE,
+            &rerun::DepthImage::new(bytes, format)
+                .with_meter(1.0)
+                .with_colormap(rerun::components::Colormap::Inferno)
+                .with_depth_range([floor as f64, top as f64]),
+        )?;
+        let lane = lane_height(self.segments) as f32;
+        rec.log_static(schema::SPACETIME_IMAGE, &rerun::Transform3D::from_scale([1.0, lane, 1.0]))?;
+        let (positions, labels) = self.ticks(layout);
+        rec.log_static(
+            schema::SPACETIME_AXES,
+            &rerun::Points2D::new(positions)
+                .with_labels(labels)
+                .with_radii([rerun::Radius::new_ui_points(2.0)])
+                .with_colors([rerun::Color::from_rgb(200, 200, 200)]),
+        )
+    }
+
+    /// Tick marks: `sim_time` (s) under the map every tenth of the run, x (m) on its left at
+    /// round lengths (none for a surface without a length, such as a spring-block's).
+    fn ticks(&self, layout: &Layout) -> (Vec<[f32; 2]>, Vec<String>) {
+        let width_m = layout.segments.last().map_or(0.0, |s| s.right);
+        let height = map_height(self.segments) as f64;
+        let mut positions = Vec::new();
+        let mut labels = Vec::new();
+        for t in ticks_over(self.t_end, 10.0) {
+            positions.push([(t / self.t_end * TIME_BINS as f64) as f32, (height + 15.0) as f32]);
+            labels.push(format!("{} s", shortest(t)));
+        }
+        for x in ticks_over(width_m, 5.0) {
+            positions.push([-30.0, (x / width_m * height) as f32]);
+            labels.push(format!("{} m", shortest(x)));
+        }
+        (positions, labels)
+    }
+}
+
+/// Round values from 0 to `span`, about `count` intervals apart; none for a span that is not a
+/// positive number.
+fn ticks_over(span: f64, count: f64) -> Vec<f64> {
+    if !(span.is_finite() && span > 0.0) {
+        return Vec::new();
+    }
+    let step = round_step(span / count);
+    (0..=(2.0 * count) as usize).map(|i| i as f64 * step).take_while(|&v| v <= span * (1.0 + 1e-9)).collect()
+}
+
+/// The round number (1, 2 or 5 × 10ⁿ) nearest above `x`.
+fn round_step(x: f64) -> f64 {
+    let decade = 10f64.powf(x.log10().floor());
+    [1.0, 2.0, 5.0, 10.0].into_iter().map(|m| m * decade).find(|&s| s >= x * (1.0 - 1e-9)).unwrap_or(10.0 * decade)
+}
+
+/// `x` with at most 6 significant digits, without trailing zeros.
+fn shortest(x: f64) -> String {
+    let text = format!("{:.6}", x);
+    text.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_steps_are_one_two_or_five_times_a_power_of_ten() {
+        assert_eq!(round_step(2.0), 2.0);
+        assert_eq!(round_step(100.0), 100.0);
+        assert_eq!(round_step(130.0), 200.0);
+        assert_eq!(round_step(0.03), 0.05);
+        assert_eq!(shortest(400.0), "400");
+        assert_eq!(ticks_over(1000.0, 10.0).len(), 11);
+        assert_eq!(ticks_over(10.0, 5.0), [0.0, 2.0, 4.0, 6.0, 8.0, 10.0]);
+        assert!(ticks_over(0.0, 5.0).is_empty() && ticks_over(f64::NAN, 5.0).is_empty());
+        assert_eq!(shortest(0.25), "0.25");
+    }
+}
