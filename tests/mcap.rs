@@ -212,6 +212,17 @@ fn replaying_a_log_reproduces_the_live_recording() {
         Ok(out) => assert!(out.status.success(), "rerun rrd compare: {}", String::from_utf8_lossy(&out.stderr)),
         Err(_) => skip("python3"),
     }
+    // The 0.36 CLI's own MCAP checker: structure and timelines of every channel.
+    match Command::new("python3").args(["-m", "rerun", "mcap", "check", "--full"]).arg(&log).output() {
+        Ok(out) if String::from_utf8_lossy(&out.stderr).contains("No module named rerun") => skip("the rerun CLI"),
+        Ok(out) => {
+            let text = String::from_utf8_lossy(&out.stdout);
+            assert!(out.status.success(), "rerun mcap check: {text}{}", String::from_utf8_lossy(&out.stderr));
+            let channels: Vec<&str> = text.lines().filter(|l| l.contains(" /")).collect();
+            assert!(channels.len() >= 5 && channels.iter().all(|l| l.trim_start().starts_with("ok")), "{text}");
+        }
+        Err(_) => skip("python3"),
+    }
     // check reads the log with the same expectations as a recording.
     let expect = dir.join("expect.toml");
     std::fs::write(

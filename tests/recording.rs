@@ -753,3 +753,43 @@ fn check_names_the_layout_of_a_recording_from_an_older_slipfront() {
         "{text}"
     );
 }
+
+#[test]
+fn the_official_sdk_reads_every_instance_and_the_run_properties() {
+    // The paper case has ten segments and eleven surface nodes: multi-instance columns.
+    let out = scratch("instances");
+    let path = out.join("paper.rrd");
+    let case = load("paper_triangular", &["time.integrator=wilson", "time.t_end=30"]);
+    let (frames, _) = run_recorded(&case, &path);
+    let mut names: Vec<String> = (0..10).map(|k| format!("contact/traction_t[{k}]")).collect();
+    names.extend((0..11).map(|j| format!("body/u_x[{j}]")));
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/python/read_recording.py");
+    let arguments: Vec<&str> = names.iter().map(String::as_str).collect();
+    let Some(output) = official_python(script, &path, &arguments) else { return };
+    let rows = rrd::read(&path).unwrap().series["contact/friction_force"].steps.len();
+    let mut compared = 0;
+    for line in output.lines().skip(1) {
+        let fields: Vec<&str> = line.split(',').collect();
+        let (name, step, value): (&str, usize, f64) =
+            (fields[0], fields[1].parse().unwrap(), fields[3].parse().unwrap());
+        assert_eq!(value, value_of(name, &frames[step]), "{name} at step {step} as read by the Rerun SDK");
+        compared += 1;
+    }
+    assert_eq!(compared, names.len() * rows, "the SDK read every row of every instance");
+
+    // The run's properties are columns of the dataset's segment table.
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/python/read_properties.py");
+    let Some(output) = official_python(script, &path, &[]) else { return };
+    let property = |column: &str| {
+        output
+            .lines()
+            .find_map(|l| l.split_once(&format!(",{column},")).map(|(_, v)| v.to_string()))
+            .unwrap_or_else(|| panic!("no {column} in\n{output}"))
+    };
+    assert_eq!(property("property:case:friction_mu_s"), "0.4");
+    assert_eq!(property("property:case:scene_nx"), "10.0");
+    assert_eq!(property("property:case:time_t_end"), "30.0");
+    assert_eq!(property("property:run:overrides"), "time.integrator=wilson time.t_end=30");
+    assert_eq!(property("property:run:integrator"), "wilson");
+    assert_eq!(property("property:run:slipfront_version"), env!("CARGO_PKG_VERSION"));
+}

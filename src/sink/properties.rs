@@ -2,7 +2,8 @@
 //! per recording, so that many runs can be told apart and selected by their parameters.
 //!
 //! * `case`: every value of the case file after the overrides, by its `--set` key
-//!   (`property:case:friction.mu_s`).
+//!   (`friction.mu_s`; a dataset server's segment table shows it as `property:case:friction_mu_s`),
+//!   numbers as floats.
 //! * `run`: the slipfront version, the case's name, the overrides as given, the integrator and
 //!   its tolerance or step, the simulated time, and the contact's segments.
 
@@ -52,11 +53,13 @@ pub fn log(rec: &RecordingStream, plan: &RecordingPlan, info: &RunInfo) -> rerun
     rec.send_property(RUN, &run)
 }
 
-/// One TOML value as a one-element Arrow array of its type.
+/// One TOML value as a one-element Arrow array: every number as a float, so that a column has
+/// one type across runs however a value was written (`--set time.t_end=500` is an integer in
+/// TOML, `t_end = 500.0` a float).
 fn toml_array(value: &toml::Value) -> ArrayRef {
     match value {
         toml::Value::Float(x) => Arc::new(Float64Array::from(vec![*x])),
-        toml::Value::Integer(n) => Arc::new(Int64Array::from(vec![*n])),
+        toml::Value::Integer(n) => Arc::new(Float64Array::from(vec![*n as f64])),
         toml::Value::Boolean(b) => Arc::new(BooleanArray::from(vec![*b])),
         toml::Value::String(s) => Arc::new(StringArray::from(vec![s.clone()])),
         other => Arc::new(StringArray::from(vec![other.to_string()])),
