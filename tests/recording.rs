@@ -102,6 +102,25 @@ fn the_schema_is_pinned() {
     entities.sort();
     // One entity per quantity, not per segment: the viewer slows with hundreds of entities.
     assert_eq!(block.entities.iter().cloned().collect::<Vec<_>>(), entities, "block entities");
+    // A static component hides the same component logged over time: the contact's colours, which
+    // show its state at every frame, must not be static.
+    let path = out.join("paper_triangular.rrd");
+    let colours = rerun::LineStrips2D::descriptor_colors().component;
+    let (mut static_colours, mut temporal_colours) = (0, 0);
+    for message in rerun::external::re_log_encoding::DecoderApp::decode_eager(std::io::BufReader::new(
+        std::fs::File::open(&path).unwrap(),
+    ))
+    .unwrap()
+    {
+        if let rerun::log::LogMsg::ArrowMsg(_, arrow) = message.unwrap() {
+            let chunk = rerun::log::Chunk::from_arrow_msg(&arrow).unwrap();
+            if chunk.entity_path().to_string() == "/spatial/contact" && chunk.components().get_array(colours).is_some()
+            {
+                if chunk.is_static() { static_colours += 1 } else { temporal_colours += 1 }
+            }
+        }
+    }
+    assert_eq!((static_colours, temporal_colours > 0), (0, true), "spatial/contact colours");
     // Series names and colours are static.
     let spring = rrd::read(&run_cli("spring_block", &["time.integrator=wilson", "time.t_end=20"], &out)).unwrap();
     let mut expected: Vec<String> =

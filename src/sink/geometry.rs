@@ -18,29 +18,29 @@ struct Row {
     colours: Option<Vec<[u8; 3]>>,
 }
 
-/// The fixed look of each geometry entity: colour, radius in UI points, draw order.
-const STYLES: [(&str, [u8; 3], f32, f32); 5] = [
-    (schema::SPATIAL_MESH, [150, 150, 150], 0.75, 0.0),
-    (schema::SPATIAL_CONTACT, [70, 130, 200], 4.0, 10.0),
-    (schema::SPATIAL_BASE, [90, 90, 90], 1.5, 0.0),
-    (schema::SPATIAL_SPRING, [200, 200, 200], 1.0, 0.0),
-    (schema::SPACETIME_NOW, [255, 255, 255], 1.0, 10.0),
+/// The fixed look of each geometry entity: colour (none for the contact, whose colours change
+/// and would be hidden by a static one), radius in UI points, draw order.
+const STYLES: [(&str, Option<[u8; 3]>, f32, f32); 5] = [
+    (schema::SPATIAL_MESH, Some([150, 150, 150]), 0.75, 0.0),
+    (schema::SPATIAL_CONTACT, None, 4.0, 10.0),
+    (schema::SPATIAL_BASE, Some([90, 90, 90]), 1.5, 0.0),
+    (schema::SPATIAL_SPRING, Some([200, 200, 200]), 1.0, 0.0),
+    (schema::SPACETIME_NOW, Some([255, 255, 255]), 1.0, 10.0),
 ];
 
 /// Logs the static look of every geometry entity, and the base of a block, which does not
 /// move in the view (its displacement is a time series).
 pub fn log_styles(rec: &rerun::RecordingStream, layout: &Layout) -> rerun::RecordingStreamResult<()> {
-    for (entity, [r, g, b], radius, order) in STYLES {
+    for (entity, colour, radius, order) in STYLES {
         if entity == schema::SPATIAL_SPRING && layout.mesh.is_some() {
             continue;
         }
-        rec.log_static(
-            entity,
-            &LineStrips2D::update_fields()
-                .with_colors([rerun::Color::from_rgb(r, g, b)])
-                .with_radii([rerun::Radius::new_ui_points(radius)])
-                .with_draw_order(order),
-        )?;
+        let mut style =
+            LineStrips2D::update_fields().with_radii([rerun::Radius::new_ui_points(radius)]).with_draw_order(order);
+        if let Some([r, g, b]) = colour {
+            style = style.with_colors([rerun::Color::from_rgb(r, g, b)]);
+        }
+        rec.log_static(entity, &style)?;
     }
     if let Some(mesh) = layout.mesh {
         let y = (0.12 * mesh.height.min(mesh.width)) as f32;
