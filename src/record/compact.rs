@@ -60,16 +60,17 @@ fn write_compacted(path: &Path, out: &Path) -> Result<Compacted, String> {
     let writer = BufWriter::new(File::create(out).map_err(|e| write_error(&e))?);
     let mut encoder = Encoder::new_eager(CrateVersion::LOCAL, EncodingOptions::PROTOBUF_COMPRESSED, writer)
         .map_err(|e| write_error(&e))?;
-    // Each held chunk with the position of its first part, so that the file keeps the order
-    // the run wrote: its description first, its ending record last.
-    let mut held: BTreeMap<(String, String, bool), (usize, rerun::StoreId, Chunk)> = BTreeMap::new();
+    // Each entity's held pieces with the position of its first one, so that the file keeps the
+    // order the run wrote: its description first, its ending record last.
+    let mut held: BTreeMap<(String, String, bool), Held> = BTreeMap::new();
     let mut counts = Compacted { chunks_before: 0, chunks_after: 0 };
-    let mut send_held = |held: &mut BTreeMap<_, (usize, rerun::StoreId, Chunk)>, encoder: &mut Encoder<_>| {
-        let mut chunks: Vec<(usize, rerun::StoreId, Chunk)> = std::mem::take(held).into_values().collect();
-        chunks.sort_by_key(|(first, _, _)| *first);
-        for (_, store, chunk) in chunks {
+    let mut send_held = |held: &mut BTreeMap<_, Held>, encoder: &mut Encoder<_>| {
+        let mut entities: Vec<Held> = std::mem::take(held).into_values().collect();
+        entities.sort_by_key(|h| h.first);
+        for entity in entities {
+            let chunk = merged(entity.pieces).map_err(|e| write_error(&e))?;
             let message = chunk.to_arrow_msg().map_err(|e| write_error(&e))?;
-            encoder.append(&LogMsg::ArrowMsg(store, message)).map_err(|e| write_error(&e))?;
+            encoder.append(&LogMsg::ArrowMsg(entity.store, message)).map_err(|e| write_error(&e))?;
             counts.chunks_after += 1;
         }
         Ok::<(), String>(())
@@ -84,21 +85,20 @@ fn write_compacted(path: &Path, out: &Path) -> Result<Compacted, String> {
         counts.chunks_before += 1;
         let chunk = Chunk::from_arrow_msg(arrow).map_err(|e| read_error(&e))?;
         let key = (format!("{store:?}"), chunk.entity_path().to_string(), chunk.is_static());
-        let position = counts.chunks_before;
-        let (first, merged) = match held.remove(&key) {
-            Some((first, _, before))
-                if before.num_rows() + chunk.num_rows() <= MAX_ROWS && before.concatenable(&chunk) =>
-            {
-                (first, Chunk::concat_and_sort(&before, &chunk).map_err(|e| read_error(&e))?)
-            }
-            Some(before) => {
-                let mut single = BTreeMap::from([(key.clone(), before)]);
-                send_held(&mut single, &mut encoder)?;
-                (position, chunk)
-            }
-            None => (position, chunk),
-        };
-        held.insert(key, (first, store.clone(), merged));
+        if let Some(entity) = held.get_mut(&key)
+            && entity.rows + chunk.num_rows() <= MAX_ROWS
+            && entity.pieces.last().is_some_and(|last| last.concatenable(&chunk))
+        {
+            entity.rows += chunk.num_rows();
+            entity.pieces.push(chunk);
+            continue;
+        }
+        if let Some(full) = held.remove(&key) {
+            send_held(&mut BTreeMap::from([(key.clone(), full)]), &mut encoder)?;
+        }
+        let entity =
+            Held { first: counts.chunks_before, store: store.clone(), rows: chunk.num_rows(), pieces: vec![chunk] };
+        held.insert(key, entity);
     }
     send_held(&mut held, &mut encoder)?;
     encoder.finish().map_err(|e| write_error(&e))?;
@@ -106,4 +106,28 @@ fn write_compacted(path: &Path, out: &Path) -> Result<Compacted, String> {
     let file = writer.into_inner().map_err(|e| write_error(&e))?;
     file.sync_all().map_err(|e| write_error(&e))?;
     Ok(counts)
+}
+
+/// One entity's chunks waiting to be merged.
+struct Held {
+    /// Position of the first piece in the file.
+    first: usize,
+    store: rerun::StoreId,
+    rows: usize,
+    pieces: Vec<Chunk>,
+}
+
+/// The pieces concatenated in order, pairwise as a balanced tree, so that each row is copied
+/// about log2(pieces) times rather than once per later piece.
+fn merged(mut pieces: Vec<Chunk>) -> rerun::log::ChunkResult<Chunk> {
+    while pieces.len() > 1 {
+        let mut next = Vec::with_capacity(pieces.len().div_ceil(2));
+        let mut pairs = pieces.chunks_exact(2);
+        for pair in &mut pairs {
+            next.push(Chunk::concat_and_sort(&pair[0], &pair[1])?);
+        }
+        next.extend(pairs.remainder().iter().cloned());
+        pieces = next;
+    }
+    Ok(pieces.pop().expect("an entity is held with at least one piece"))
 }
