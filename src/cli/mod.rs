@@ -1,4 +1,4 @@
-//! The command line: `slipfront run | check | figures | replay`, one file per command.
+//! The command line: `slipfront run | check | figures | replay | study`, one file per command.
 
 pub mod check;
 pub mod common;
@@ -8,6 +8,7 @@ pub mod outputs;
 pub mod replay;
 pub mod run;
 pub mod signals;
+pub mod study;
 
 use std::process::ExitCode;
 
@@ -18,6 +19,7 @@ pub use common::{EXIT_FAILED, EXIT_INTERRUPTED, EXIT_INVALID, ViewerArgs};
 pub use figures::FiguresArgs;
 pub use replay::ReplayArgs;
 pub use run::RunArgs;
+pub use study::StudyArgs;
 
 /// Frictional stick-slip with the super/subloading surface friction model: a dynamic finite
 /// element solver whose contact follows Yasuike & Toyoda's model, with an event catalog of
@@ -52,6 +54,15 @@ pub enum Command {
     /// otherwise. Exit codes: 0 replayed, 1 the log is damaged (what could be recovered was
     /// replayed), 2 unreadable or invalid arguments.
     Replay(ReplayArgs),
+    /// Run every member of an ensemble or parameter sweep of a case (a study file), on the
+    /// cores or as one shard of a batch job, into <out-dir>/<study-stem>/: each member's
+    /// recording and catalogs, events.csv (every member's events, its parameters as columns)
+    /// and summary.md.
+    ///
+    /// Exit codes: 0 every selected member ran, 1 a member could not be written, 2 an invalid
+    /// study file or argument (nothing runs), 130/143 interrupted (finished members are kept;
+    /// --resume runs the rest).
+    Study(StudyArgs),
     /// Decode a recording and exit 0 (the child process of `check` and `figures`).
     #[command(name = "__decode-rrd", hide = true)]
     DecodeRrd { recording: std::path::PathBuf },
@@ -64,6 +75,7 @@ pub fn main_with(cli: Cli) -> ExitCode {
         Command::Check(args) => check::command(args),
         Command::Figures(args) => figures::command(args),
         Command::Replay(args) => replay::command(args),
+        Command::Study(args) => study::command(args),
         Command::DecodeRrd { recording } => isolated::decode_in_child(&recording),
     }
 }

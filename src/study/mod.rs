@@ -1,6 +1,10 @@
-//! Working with runs and their files: ensembles of perturbed runs, figures drawn from a
-//! recording, and the replay of an MCAP log into a recording.
+//! Working with runs and their files: studies (ensembles and sweeps of a case, run on the cores
+//! or in shards, summarized), figures drawn from a recording, and the replay of an MCAP log
+//! into a recording.
 
 pub mod ensemble;
 pub mod figures;
 pub mod replay;
+pub mod runner;
+pub mod spec;
+pub mod summary;

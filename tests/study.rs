@@ -1,0 +1,160 @@
+//! `slipfront study`: bad study files refused before anything runs, shards that add up to the
+//! whole study, a killed study resumed to the same files, and the output folder read by the
+//! official Rerun SDK as one dataset.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn scratch(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("slipfront-study-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A study of the paper case to 450 s (its first slips): 2 sweep rows × 2 ensemble members.
+fn small_study(dir: &Path, extra: &str) -> PathBuf {
+    let path = dir.join("small.toml");
+    let text = format!(
+        "case = \"{}/cases/paper_triangular.toml\"\n[set]\n\"time.t_end\" = 450.0\n\"time.integrator\" = \"wilson\"\n\
+         [ensemble]\nkey = \"friction.structure0\"\nstep = -1.0e-9\nmembers = 2\n\
+         [sweep]\n\"scene.normal_traction.left\" = [300.0, 350.0]\n{extra}",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn study(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_slipfront")).arg("study").args(args).output().unwrap();
+    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    (out.status.code().unwrap_or(-1), text)
+}
+
+/// Every file of a study folder but the recordings, by name, with its bytes.
+fn outputs(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_none_or(|e| e != "rrd"))
+        .map(|p| (p.file_name().unwrap().to_string_lossy().into_owned(), std::fs::read(&p).unwrap()))
+        .collect();
+    files.sort();
+    files
+}
+
+#[test]
+fn bad_study_files_are_refused_before_anything_runs() {
+    let dir = scratch("bad");
+    let cases = [
+        ("[set]\n\"friction.mu_x\" = 1.0\n", "mu_x"),
+        ("[sweep]\n\"scene.nothing\" = [1.0]\n", "nothing"),
+        ("[sweep]\n\"scene.nx\" = []\n", "sweep.\"scene.nx\" = []: a sweep key needs at least one value"),
+        (
+            "[ensemble]\nkey = \"friction.structure0\"\nstep = 1e-9\nmembers = 0\n",
+            "ensemble.members = 0 must be at least 1",
+        ),
+        (
+            "[sweep]\n\"friction.mu_k\" = [0.2, 0.5]\n",
+            "member 1 (row 1, k = 0): friction.mu_k = 0.5 must be less than friction.mu_s = 0.4",
+        ),
+        (
+            "[ensemble]\nkey = \"friction.kappa\"\nstep = 0.0\nmembers = 2\n",
+            "ensemble.step = 0 must be a finite number other than 0",
+        ),
+        ("colour = \"red\"\n", "unknown field `colour`"),
+    ];
+    for (body, expected) in cases {
+        let path = dir.join("bad.toml");
+        std::fs::write(&path, format!("case = \"{}/cases/paper_triangular.toml\"\n{body}", env!("CARGO_MANIFEST_DIR")))
+            .unwrap();
+        let out = dir.join("out");
+        let (code, text) = study(&[path.to_str().unwrap(), "--out-dir", out.to_str().unwrap()]);
+        assert_eq!(code, 2, "{body}: {text}");
+        assert!(text.contains(expected), "{body}: expected {expected:?} in {text}");
+        assert!(!out.exists(), "{body}: nothing may be written");
+    }
+    let path = small_study(&dir, "");
+    let (code, text) = study(&[path.to_str().unwrap(), "--shard", "3/2"]);
+    assert_eq!(code, 2, "{text}");
+    assert!(text.contains("--shard 3/2: expected I/N with 1 ≤ I ≤ N"), "{text}");
+}
+
+#[test]
+fn shards_add_up_to_the_whole_study_and_a_killed_study_resumes_to_the_same_files() {
+    let dir = scratch("shards");
+    let path = small_study(&dir, "");
+    let path = path.to_str().unwrap();
+    let whole = dir.join("whole");
+    let (code, text) = study(&[path, "--out-dir", whole.to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 0, "{text}");
+    // Two shards into one folder, one after the other as two machines would.
+    let sharded = dir.join("sharded");
+    for shard in ["1/2", "2/2"] {
+        let (code, text) = study(&[path, "--out-dir", sharded.to_str().unwrap(), "--shard", shard, "--quiet"]);
+        assert_eq!(code, 0, "{text}");
+    }
+    let expected = outputs(&whole.join("small"));
+    assert_eq!(expected.len(), 4 * 3 + 2, "4 members × (events, ruptures, done) + events.csv, summary.md");
+    assert_eq!(outputs(&sharded.join("small")), expected, "sharded and whole studies differ");
+    let summary = String::from_utf8(expected.iter().find(|(n, _)| n == "summary.md").unwrap().1.clone()).unwrap();
+    assert!(summary.contains("4 of 4 members finished (2 sweep rows of 2 members)"), "{summary}");
+
+    // A study killed (SIGKILL, which it cannot see) after its first member, then resumed.
+    let resumed = dir.join("resumed");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_slipfront"))
+        .args(["study", path, "--out-dir", resumed.to_str().unwrap(), "--jobs", "1", "--quiet"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let started = Instant::now();
+    while !resumed.join("small/member-0000.done.toml").exists() {
+        assert!(started.elapsed() < Duration::from_secs(60), "the first member did not finish");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(!resumed.join("small/member-0003.done.toml").exists(), "the study was killed before its end");
+    let (code, text) = study(&[path, "--out-dir", resumed.to_str().unwrap(), "--resume"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("already done"), "{text}");
+    let after: Vec<(String, Vec<u8>)> =
+        outputs(&resumed.join("small")).into_iter().filter(|(n, _)| !n.starts_with('.')).collect();
+    assert_eq!(after, expected, "the resumed study differs from the uninterrupted one");
+}
+
+#[test]
+fn the_official_sdk_reads_the_study_folder_as_one_dataset() {
+    let dir = scratch("dataset");
+    let path = small_study(&dir, "");
+    let out = dir.join("out");
+    let (code, text) = study(&[path.to_str().unwrap(), "--out-dir", out.to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 0, "{text}");
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/python/read_study.py");
+    let output = match Command::new("python3").arg(script).arg(out.join("small")).output() {
+        Ok(o) if o.status.code() == Some(3) => {
+            assert!(std::env::var_os("SLIPFRONT_REQUIRE_OFFICIAL_TOOLS").is_none(), "the Rerun SDK is required");
+            return eprintln!("SKIPPED: the official Rerun Python SDK is not installed");
+        }
+        Ok(o) => {
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            String::from_utf8(o.stdout).unwrap()
+        }
+        Err(_) => return eprintln!("SKIPPED: python3"),
+    };
+    // One segment per member, its parameters in the segment table.
+    let segments: Vec<&str> = output.lines().filter(|l| l.starts_with("segment,")).collect();
+    assert_eq!(segments.len(), 4, "{output}");
+    for (k, left) in [(0, "300.0"), (1, "300.0"), (0, "350.0"), (1, "350.0")] {
+        let structure = if k == 0 { "2.0" } else { "1.999999999" };
+        assert!(
+            segments.iter().any(|l| l.ends_with(&format!(",{left},{structure}"))),
+            "no member with left = {left}, structure0 = {structure}: {output}"
+        );
+    }
+    // One query across every member: the friction force's last value in each.
+    let finals: Vec<&str> = output.lines().filter(|l| l.starts_with("final,")).collect();
+    assert_eq!(finals.len(), 4, "{output}");
+}
