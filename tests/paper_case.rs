@@ -18,7 +18,7 @@ use slipfront::catalog::observations::{Observations, Verdict, median};
 use slipfront::frame::{Frame, Needs};
 use slipfront::scene::Scene;
 use slipfront::scene::block::BlockScene;
-use slipfront::study::ensemble::{available_threads, run_ensemble};
+use slipfront::study::ensemble::{available_threads, perturbed, run_cases};
 
 struct Run {
     events: Vec<SlipEvent>,
@@ -81,8 +81,22 @@ fn the_paper_case_shows_the_four_observations() {
     // initial 1/R* differ by 1e-9: the median member for counts, the pooled mean for 1/R*, the
     // pooled fraction for ruptures. The criteria are those of `Verdict`, fixed on one run before
     // the chaos was known; the member-by-member verdicts are printed alongside.
+    // The members are those of the shipped study file, which is how a user runs this ensemble
+    // (`slipfront study cases/studies/paper_ensemble.toml`); they are the perturbed copies of
+    // `slipfront::study::ensemble` to the bit.
+    let study = slipfront::study::spec::load(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/cases/studies/paper_ensemble.toml"
+    )))
+    .unwrap();
+    assert_eq!(study.members.len(), MEMBERS);
     let case = wilson("paper_triangular", &[]);
-    let members = run_ensemble(&case, MEMBERS, EPSILON, available_threads());
+    for m in &study.members {
+        let expected = perturbed(&case, m.k, EPSILON).friction.structure0;
+        assert_eq!(m.case.friction.structure0.to_bits(), expected.to_bits(), "member {}", m.k);
+    }
+    let cases: Vec<Case> = study.members.iter().map(|m| m.case.clone()).collect();
+    let members = run_cases(&cases, available_threads());
     let observed: Vec<Observations> = members
         .iter()
         .map(|m| {

@@ -61,18 +61,22 @@ pub fn catalog(case: &Case) -> Result<(Catalog, usize), RunError> {
 /// Runs `members` perturbed copies of `case` (see the module docs) on `threads` threads and
 /// returns them in order of their index.
 pub fn run_ensemble(case: &Case, members: usize, epsilon: f64, threads: usize) -> Vec<Member> {
+    let cases: Vec<Case> = (0..members).map(|index| perturbed(case, index, epsilon)).collect();
+    run_cases(&cases, threads)
+}
+
+/// Runs `cases` with only their event catalogs observing them, on `threads` threads; member `i`
+/// is `cases[i]`, returned in order.
+pub fn run_cases(cases: &[Case], threads: usize) -> Vec<Member> {
     let next = AtomicUsize::new(0);
-    let done = Mutex::new(Vec::with_capacity(members));
+    let done = Mutex::new(Vec::with_capacity(cases.len()));
     std::thread::scope(|scope| {
-        for _ in 0..threads.clamp(1, members.max(1)) {
+        for _ in 0..threads.clamp(1, cases.len().max(1)) {
             scope.spawn(|| {
                 loop {
                     let index = next.fetch_add(1, Ordering::SeqCst);
-                    if index >= members {
-                        break;
-                    }
-                    let member = perturbed(case, index, epsilon);
-                    let (catalog, segments) = match catalog(&member) {
+                    let Some(member) = cases.get(index) else { break };
+                    let (catalog, segments) = match catalog(member) {
                         Ok((catalog, segments)) => (Ok(catalog), segments),
                         Err(e) => (Err(e), 0),
                     };

@@ -10,11 +10,14 @@
 //! members = 8
 //! [sweep]                                 # optional: the product of these lists
 //! "scene.normal_traction.left" = [300.0, 350.0]
+//! [[rows]]                                # optional: rows given one by one (same keys in each)
+//! "scene.normal_traction.right" = 1200.0
 //! ```
 //!
-//! Members are numbered row by row: sweep row `r` (the product of the sweep lists, keys in
-//! alphabetical order, the last key varying fastest), ensemble member `k` within it, index
-//! `r × members + k`. Every member is built and validated before any runs.
+//! Members are numbered row by row: row `r` (each of the `[[rows]]`, or one empty row, combined
+//! with the product of the sweep lists, keys in alphabetical order, the last key varying
+//! fastest), ensemble member `k` within it, index `r × members + k`. Every member is built and
+//! validated before any runs.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -34,6 +37,8 @@ struct StudyFile {
     ensemble: Option<EnsembleSpec>,
     #[serde(default)]
     sweep: BTreeMap<String, Vec<toml::Value>>,
+    #[serde(default)]
+    rows: Vec<BTreeMap<String, toml::Value>>,
 }
 
 /// `[ensemble]`: member `k` moves `key` by `k × step` from the case's value.
@@ -87,7 +92,7 @@ pub fn load(path: &Path) -> Result<Study, String> {
         format!("{}: case = \"{}\": cannot read {}: {e}", path.display(), file.case, case_path.display())
     })?;
     check_shape(&file).map_err(|e| format!("{}: {e}", path.display()))?;
-    let rows = sweep_rows(&file.sweep);
+    let rows = all_rows(&file);
     let per_row = file.ensemble.as_ref().map_or(1, |e| e.members);
     let mut members = Vec::with_capacity(rows.len() * per_row);
     for (r, row) in rows.iter().enumerate() {
@@ -97,9 +102,9 @@ pub fn load(path: &Path) -> Result<Study, String> {
             members.push(member);
         }
     }
-    let mut varying: Vec<String> = file.sweep.keys().cloned().collect();
+    let mut varying: Vec<String> = rows[0].iter().map(|(key, _)| key.clone()).collect();
+    let swept = varying.len();
     varying.extend(file.ensemble.as_ref().map(|e| e.key.clone()));
-    let swept = file.sweep.len();
     Ok(Study { name, case_path, varying, swept, rows: rows.len(), members_per_row: per_row, members })
 }
 
@@ -113,7 +118,23 @@ fn check_shape(file: &StudyFile) -> Result<(), String> {
             return Err(format!("sweep.\"{key}\" is also in [set]: give a key in one place"));
         }
     }
+    if let Some(first) = file.rows.first() {
+        for (i, row) in file.rows.iter().enumerate() {
+            if row.keys().ne(first.keys()) {
+                return Err(format!("rows[{i}] sets other keys than rows[0]: every row gives the same keys"));
+            }
+            if let Some(key) = row.keys().find(|k| file.sweep.contains_key(*k) || file.set.contains_key(*k)) {
+                return Err(format!("rows[{i}].\"{key}\" is also swept or set: give a key in one place"));
+            }
+        }
+        if first.is_empty() {
+            return Err("rows[0] is empty: a row gives at least one key".into());
+        }
+    }
     if let Some(e) = &file.ensemble {
+        if file.rows.first().is_some_and(|r| r.contains_key(&e.key)) {
+            return Err(format!("ensemble.key = \"{}\" is also in [[rows]]: give a key in one place", e.key));
+        }
         if e.members == 0 {
             return Err("ensemble.members = 0 must be at least 1".into());
         }
@@ -144,6 +165,17 @@ fn sweep_rows(sweep: &BTreeMap<String, Vec<toml::Value>>) -> Vec<Vec<(String, to
             .collect();
     }
     rows
+}
+
+/// Every row: each of `[[rows]]` (or one empty row) with each combination of the sweep.
+fn all_rows(file: &StudyFile) -> Vec<Vec<(String, toml::Value)>> {
+    let given: Vec<Vec<(String, toml::Value)>> = if file.rows.is_empty() {
+        vec![Vec::new()]
+    } else {
+        file.rows.iter().map(|row| row.iter().map(|(k, v)| (k.clone(), v.clone())).collect()).collect()
+    };
+    let swept = sweep_rows(&file.sweep);
+    given.iter().flat_map(|g| swept.iter().map(move |s| [g.clone(), s.clone()].concat())).collect()
 }
 
 /// `key=value` as `--set` takes it.

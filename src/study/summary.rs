@@ -69,11 +69,11 @@ fn mean_and_error(values: &[f64]) -> (f64, f64) {
 /// (mean ± standard error), and the paper's observations as proportions with a 95 % interval.
 fn summary(study: &Study, records: &[MemberRecord]) -> String {
     let mut out = format!(
-        "# Study {}\n\n{} of {} members finished ({} sweep rows of {} members). Base case: `{}`.\n\n",
+        "# Study {}\n\n{} of {} members finished ({} of {} members). Base case: `{}`.\n\n",
         study.name,
         records.len(),
         study.members.len(),
-        study.rows,
+        plural(study.rows, "row"),
         study.members_per_row,
         study.case_path.display()
     );
@@ -91,6 +91,11 @@ fn summary(study: &Study, records: &[MemberRecord]) -> String {
         row_statistics(&mut out, &members);
     }
     out
+}
+
+/// `1 row`, `2 rows`.
+fn plural(n: usize, word: &str) -> String {
+    if n == 1 { format!("1 {word}") } else { format!("{n} {word}s") }
 }
 
 /// The statistics of one row.
