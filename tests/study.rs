@@ -158,3 +158,29 @@ fn the_official_sdk_reads_the_study_folder_as_one_dataset() {
     let finals: Vec<&str> = output.lines().filter(|l| l.starts_with("final,")).collect();
     assert_eq!(finals.len(), 4, "{output}");
 }
+
+#[test]
+fn a_stop_rule_ends_a_member_early_with_its_outputs_finished() {
+    let dir = scratch("stop");
+    // Nothing slips in the paper case before about 400 s: `quiet_for = 100` stops every member
+    // at 100 s, recorded as such, its recording complete to that step.
+    let path = small_study(&dir, "[stop]\nquiet_for = 100.0\n");
+    let out = dir.join("out");
+    let (code, text) = study(&[path.to_str().unwrap(), "--out-dir", out.to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 0, "{text}");
+    let record = std::fs::read_to_string(out.join("small/member-0000.done.toml")).unwrap();
+    assert!(record.contains("ending = \"stopped nothing slipped for 100 s, at 100.00 s\""), "{record}");
+    let summary = std::fs::read_to_string(out.join("small/summary.md")).unwrap();
+    assert!(summary.contains("(0 completed, 2 stopped by a rule, 0 failed)"), "{summary}");
+    let check = Command::new(env!("CARGO_BIN_EXE_slipfront"))
+        .args(["check", out.join("small/member-0000.rrd").to_str().unwrap()])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&check.stdout);
+    assert!(check.status.success() && text.contains("run interrupted") && text.contains("up to t = 100"), "{text}");
+    // A rule that cannot hold is refused with the study file.
+    let bad = small_study(&dir, "[stop]\nquiet_for = -5.0\n");
+    let (code, text) = study(&[bad.to_str().unwrap(), "--out-dir", out.to_str().unwrap()]);
+    assert_eq!(code, 2, "{text}");
+    assert!(text.contains("stop.quiet_for = -5 must be a positive number of seconds"), "{text}");
+}

@@ -7,4 +7,5 @@ pub mod figures;
 pub mod replay;
 pub mod runner;
 pub mod spec;
+pub mod stop;
 pub mod summary;

@@ -8,8 +8,8 @@
 //! flight.
 
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
@@ -23,6 +23,7 @@ use crate::sink::Sink;
 use crate::sink::catalog::CatalogSink;
 use crate::sink::rerun::{RerunSink, Viewer, open_stream};
 use crate::study::spec::{Member, Study};
+use crate::study::stop::StopRules;
 
 /// What a finished member leaves as `<name>.done.toml`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -32,7 +33,8 @@ pub struct MemberRecord {
     pub k: usize,
     /// The varying keys and their values (TOML text), in the study's order.
     pub parameters: Vec<(String, String)>,
-    /// `completed`, `failed` or `interrupted` (an interrupted member has no record).
+    /// `completed`, `failed`, or `stopped` and why, by a stop rule (an interrupted member has
+    /// no record).
     pub ending: String,
     /// Why the run failed, if it did.
     pub error: Option<String>,
@@ -149,12 +151,18 @@ fn run_member(
     let stream =
         open_stream(Some(&rrd), &Viewer::None, &name, plan.recording_id.as_deref())?.ok_or("no recording stream")?;
     let ruptures = (layout.kind == SceneKind::Block).then(|| output(dir, &member.name, ".ruptures.csv"));
-    let mut sinks: Vec<Box<dyn Sink>> = vec![
+    let (stop, fired) = (AtomicBool::new(false), OnceLock::new());
+    let mut sinks: Vec<Box<dyn Sink + '_>> = vec![
         Box::new(CatalogSink::new(output(dir, &member.name, ".events.csv"), ruptures)),
         Box::new(RerunSink::new(stream, plan)),
     ];
+    let rules = !study.stop.is_empty();
+    if rules {
+        let threshold = case.slip_rate_threshold();
+        sinks.push(Box::new(StopRules::new(study.stop.clone(), threshold, &stop, interrupt, &fired)));
+    }
     let options = LoopOptions {
-        interrupt,
+        interrupt: if rules { Some(&stop) } else { interrupt },
         needs: Needs { segment_state: true, ..Needs::default() },
         ..LoopOptions::for_case(case)
     };
@@ -163,8 +171,11 @@ fn run_member(
     // A compaction that fails leaves the recording as written, which is complete.
     let _ = crate::record::compact::compact(&rrd);
     let (ending, error, catalog) = match outcome {
-        Outcome::Completed { catalog, .. } => ("completed", None, catalog),
-        Outcome::Failed { error, catalog } => ("failed", Some(error.to_string()), catalog),
+        Outcome::Completed { catalog, .. } => ("completed".to_string(), None, catalog),
+        Outcome::Failed { error, catalog } => ("failed".to_string(), Some(error.to_string()), catalog),
+        Outcome::Interrupted { catalog, .. } if fired.get().is_some() => {
+            (format!("stopped {}", fired.get().expect("checked")), None, catalog)
+        }
         Outcome::Interrupted { .. } => return Ok(None),
         Outcome::Sink(e) => return Err(e.to_string()),
     };
@@ -182,7 +193,7 @@ fn run_member(
         row: member.row,
         k: member.k,
         parameters: member.parameters.iter().map(|(k, v)| (k.clone(), v.to_string())).collect(),
-        ending: ending.into(),
+        ending,
         error,
         segments,
         slip_events: catalog.events.len(),

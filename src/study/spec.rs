@@ -12,6 +12,9 @@
 //! "scene.normal_traction.left" = [300.0, 350.0]
 //! [[rows]]                                # optional: rows given one by one (same keys in each)
 //! "scene.normal_traction.right" = 1200.0
+//! [stop]                                  # optional: end a member early
+//! after_whole_rupture = true              # once a rupture has covered the whole surface
+//! quiet_for = 200.0                       # or once nothing has slipped for 200 s
 //! ```
 //!
 //! Members are numbered row by row: row `r` (each of the `[[rows]]`, or one empty row, combined
@@ -25,6 +28,7 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 
 use crate::case::{self, Case};
+use crate::study::stop::StopSpec;
 use crate::validate::shortest;
 
 /// The study file as written.
@@ -39,6 +43,8 @@ struct StudyFile {
     sweep: BTreeMap<String, Vec<toml::Value>>,
     #[serde(default)]
     rows: Vec<BTreeMap<String, toml::Value>>,
+    #[serde(default)]
+    stop: StopSpec,
 }
 
 /// `[ensemble]`: member `k` moves `key` by `k × step` from the case's value.
@@ -76,6 +82,8 @@ pub struct Study {
     pub varying: Vec<String>,
     /// How many of them are swept.
     pub swept: usize,
+    /// When a member stops before `t_end` ([`crate::study::stop`]).
+    pub stop: StopSpec,
     pub rows: usize,
     pub members_per_row: usize,
     pub members: Vec<Member>,
@@ -105,11 +113,12 @@ pub fn load(path: &Path) -> Result<Study, String> {
     let mut varying: Vec<String> = rows[0].iter().map(|(key, _)| key.clone()).collect();
     let swept = varying.len();
     varying.extend(file.ensemble.as_ref().map(|e| e.key.clone()));
-    Ok(Study { name, case_path, varying, swept, rows: rows.len(), members_per_row: per_row, members })
+    Ok(Study { name, case_path, varying, swept, stop: file.stop, rows: rows.len(), members_per_row: per_row, members })
 }
 
 /// The rules a study file's shape must meet before any member is built.
 fn check_shape(file: &StudyFile) -> Result<(), String> {
+    file.stop.check()?;
     for (key, values) in &file.sweep {
         if values.is_empty() {
             return Err(format!("sweep.\"{key}\" = []: a sweep key needs at least one value"));

@@ -100,12 +100,14 @@ fn plural(n: usize, word: &str) -> String {
 
 /// The statistics of one row.
 fn row_statistics(out: &mut String, members: &[&MemberRecord]) {
-    let completed = members.iter().filter(|m| m.ending == "completed").count();
+    let count = |prefix: &str| members.iter().filter(|m| m.ending.starts_with(prefix)).count();
     let _ = writeln!(
         out,
-        "- members finished: {} ({completed} completed, {} failed)",
+        "- members finished: {} ({} completed, {} stopped by a rule, {} failed)",
         members.len(),
-        members.len() - completed
+        count("completed"),
+        count("stopped"),
+        count("failed")
     );
     if members.is_empty() {
         out.push('\n');
