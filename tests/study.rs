@@ -96,7 +96,7 @@ fn shards_add_up_to_the_whole_study_and_a_killed_study_resumes_to_the_same_files
         assert_eq!(code, 0, "{text}");
     }
     let expected = outputs(&whole.join("small"));
-    assert_eq!(expected.len(), 4 * 3 + 2, "4 members × (events, ruptures, done) + events.csv, summary.md");
+    assert_eq!(expected.len(), 4 * 3 + 3, "4 members × (events, ruptures, done) + events.csv, summary.md, summary.png");
     assert_eq!(outputs(&sharded.join("small")), expected, "sharded and whole studies differ");
     let summary = String::from_utf8(expected.iter().find(|(n, _)| n == "summary.md").unwrap().1.clone()).unwrap();
     assert!(summary.contains("4 of 4 members finished (2 rows of 2 members)"), "{summary}");

@@ -56,8 +56,8 @@ pub enum Command {
     Replay(ReplayArgs),
     /// Run every member of an ensemble or parameter sweep of a case (a study file), on the
     /// cores or as one shard of a batch job, into <out-dir>/<study-stem>/: each member's
-    /// recording and catalogs, events.csv (every member's events, its parameters as columns)
-    /// and summary.md.
+    /// recording and catalogs, events.csv (every member's events, its parameters as columns),
+    /// summary.md and summary.png.
     ///
     /// Exit codes: 0 every selected member ran, 1 a member could not be written, 2 an invalid
     /// study file or argument (nothing runs), 130/143 interrupted (finished members are kept;

@@ -319,3 +319,80 @@ pub fn plot_work_precision(path: &Path, panels: &[(String, Vec<WorkPrecisionCurv
     }
     write_png(path, &pixels)
 }
+
+/// One series of a proportions plot: per row, how many of how many runs hold.
+pub struct Proportions {
+    pub label: String,
+    pub counts: Vec<(usize, usize)>,
+}
+
+/// Writes proportions per row with their Wilson 95 % intervals (`interval`), one colour per
+/// series, side by side within each row.
+pub fn plot_proportions(
+    path: &Path,
+    title: &str,
+    rows: usize,
+    series: &[Proportions],
+    interval: fn(usize, usize) -> (f64, f64),
+) -> Result<(), String> {
+    register_font();
+    const COLOURS: [RGBColor; 4] =
+        [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(40, 40, 40)];
+    let mut pixels = vec![255u8; (WIDTH * HEIGHT * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut pixels, (WIDTH, HEIGHT)).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_error)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 22))
+            .margin(16)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d(-0.5..(rows as f64 - 0.5), 0.0..1.0)
+            .map_err(draw_error)?;
+        chart
+            .configure_mesh()
+            .x_desc("row of the study (summary.md)")
+            .y_desc("share of members")
+            .x_labels(rows.min(40))
+            .x_label_formatter(&|v| if (v - v.round()).abs() < 1e-9 { format!("{}", v.round()) } else { String::new() })
+            .label_style(("sans-serif", 15))
+            .draw()
+            .map_err(draw_error)?;
+        let width = 0.7 / series.len().max(1) as f64;
+        for (i, s) in series.iter().enumerate() {
+            let colour = COLOURS[i % COLOURS.len()];
+            let offset = (i as f64 - (series.len() as f64 - 1.0) / 2.0) * width;
+            let rows: Vec<(f64, f64, f64, f64)> = s
+                .counts
+                .iter()
+                .enumerate()
+                .filter(|(_, (_, n))| *n > 0)
+                .map(|(row, &(held, n))| {
+                    let (lo, hi) = interval(held, n);
+                    (row as f64 + offset, lo, held as f64 / n as f64, hi)
+                })
+                .collect();
+            // The interval as a vertical line, the share as a dot on it.
+            chart
+                .draw_series(
+                    rows.iter().map(|&(x, lo, _, hi)| PathElement::new(vec![(x, lo), (x, hi)], colour.stroke_width(2))),
+                )
+                .map_err(draw_error)?;
+            chart
+                .draw_series(rows.iter().map(|&(x, _, share, _)| Circle::new((x, share), 5, colour.filled())))
+                .map_err(draw_error)?
+                .label(s.label.clone())
+                .legend(move |(x, y)| Circle::new((x + 10, y), 5, colour.filled()));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 15))
+            .draw()
+            .map_err(draw_error)?;
+        root.present().map_err(draw_error)?;
+    }
+    write_png(path, &pixels)
+}

@@ -6,6 +6,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use crate::study::figures::{Proportions, plot_proportions};
 use crate::study::runner::{MemberRecord, output, record_of, write_atomically};
 use crate::study::spec::Study;
 
@@ -15,6 +16,7 @@ pub fn write(study: &Study, dir: &Path) -> Result<usize, String> {
     let records: Vec<MemberRecord> = study.members.iter().filter_map(|m| record_of(dir, &m.name)).collect();
     write_atomically(&dir.join("events.csv"), &events_table(study, dir, &records)?)?;
     write_atomically(&dir.join("summary.md"), &summary(study, &records))?;
+    verdict_figure(study, &dir.join("summary.png"), &records)?;
     Ok(records.len())
 }
 
@@ -40,6 +42,32 @@ fn events_table(study: &Study, dir: &Path, records: &[MemberRecord]) -> Result<S
 /// `v1,v2,` (or nothing).
 fn prefix(values: &[&str]) -> String {
     values.iter().map(|v| format!("{v},")).collect()
+}
+
+/// `summary.png`: per row, the share of members in which each of the paper's observations
+/// holds, with its 95 % interval; none for studies of scenes without verdicts.
+fn verdict_figure(study: &Study, path: &Path, records: &[MemberRecord]) -> Result<(), String> {
+    if records.iter().all(|r| r.verdict.is_none()) {
+        return Ok(());
+    }
+    let labels = ["1. left end", "2. right end", "3. propagation", "all three"];
+    let series: Vec<Proportions> = labels
+        .iter()
+        .enumerate()
+        .map(|(i, label)| Proportions {
+            label: label.to_string(),
+            counts: (0..study.rows)
+                .map(|row| {
+                    let judged: Vec<[bool; 3]> =
+                        records.iter().filter(|r| r.row == row).filter_map(|r| r.verdict).collect();
+                    let held = judged.iter().filter(|v| if i == 3 { v.iter().all(|&b| b) } else { v[i] }).count();
+                    (held, judged.len())
+                })
+                .collect(),
+        })
+        .collect();
+    let title = format!("{}: the paper's observations per row, with Wilson 95 % intervals", study.name);
+    plot_proportions(path, &title, study.rows, &series, wilson_interval)
 }
 
 /// The Wilson score interval of a proportion `x / n` at 95 % (`z = 1.96`).
