@@ -9,20 +9,9 @@ Exit 3 if the SDK is missing (the caller skips), 1 on any other failure.
 """
 
 import math
-import socket
 import sys
 
-try:
-    import rerun as rr
-except ImportError:
-    print("rerun-sdk is not installed", file=sys.stderr)
-    sys.exit(3)
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+from rerun_server import server
 
 
 def split(series: str) -> tuple[str, int]:
@@ -36,8 +25,8 @@ def split(series: str) -> tuple[str, int]:
 def main() -> None:
     path, names = sys.argv[1], sys.argv[2:]
     entities = sorted({split(n)[0] for n in names})
-    with rr.server.Server(host="127.0.0.1", port=free_port(), datasets={"run": [path]}) as server:
-        client = server.client()
+    with server({"run": [path]}) as running:
+        client = running.client()
         dataset = client.get_dataset("run")
         frame = dataset.filter_contents(["/" + e for e in entities]).reader(index="step").to_pandas()
     print("series,step,sim_time_s,value")

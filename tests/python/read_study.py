@@ -7,26 +7,15 @@ usage: python3 read_study.py STUDY_DIR
 Exit 3 if the SDK is missing (the caller skips), 1 on any other failure.
 """
 
-import socket
 import sys
 
-try:
-    import rerun as rr
-except ImportError:
-    print("rerun-sdk is not installed", file=sys.stderr)
-    sys.exit(3)
-
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+from rerun_server import server
 
 
 def main() -> None:
     folder = sys.argv[1]
-    with rr.server.Server(host="127.0.0.1", port=free_port(), datasets={"study": folder}) as server:
-        client = server.client()
+    with server({"study": folder}) as running:
+        client = running.client()
         dataset = client.get_dataset("study")
         table = dataset.segment_table().to_pandas()
         left = "property:case:scene_normal_traction_left"
