@@ -178,6 +178,20 @@ fn a_stop_rule_ends_a_member_early_with_its_outputs_finished() {
         .unwrap();
     let text = String::from_utf8_lossy(&check.stdout);
     assert!(check.status.success() && text.contains("run interrupted") && text.contains("up to t = 100"), "{text}");
+    // Without recordings, only the catalogs and records are written.
+    let text = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(&path, format!("recordings = false\n{text}")).unwrap();
+    let lean = dir.join("lean");
+    let (code, text) = study(&[path.to_str().unwrap(), "--out-dir", lean.to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 0, "{text}");
+    let names: Vec<String> = std::fs::read_dir(lean.join("small"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        names.iter().all(|n| !n.ends_with(".rrd")) && names.contains(&"member-0003.done.toml".to_string()),
+        "{names:?}"
+    );
     // A rule that cannot hold is refused with the study file.
     let bad = small_study(&dir, "[stop]\nquiet_for = -5.0\n");
     let (code, text) = study(&[bad.to_str().unwrap(), "--out-dir", out.to_str().unwrap()]);

@@ -147,15 +147,16 @@ fn run_member(
     let layout = scene.layout().clone();
     let rrd = output(dir, &member.name, ".rrd");
     let name = format!("{}-{}", study.name, member.name);
-    let plan = RecordingPlan::for_case(&name, case);
-    let stream =
-        open_stream(Some(&rrd), &Viewer::None, &name, plan.recording_id.as_deref())?.ok_or("no recording stream")?;
     let ruptures = (layout.kind == SceneKind::Block).then(|| output(dir, &member.name, ".ruptures.csv"));
     let (stop, fired) = (AtomicBool::new(false), OnceLock::new());
-    let mut sinks: Vec<Box<dyn Sink + '_>> = vec![
-        Box::new(CatalogSink::new(output(dir, &member.name, ".events.csv"), ruptures)),
-        Box::new(RerunSink::new(stream, plan)),
-    ];
+    let mut sinks: Vec<Box<dyn Sink + '_>> =
+        vec![Box::new(CatalogSink::new(output(dir, &member.name, ".events.csv"), ruptures))];
+    if study.recordings {
+        let plan = RecordingPlan::for_case(&name, case);
+        let stream = open_stream(Some(&rrd), &Viewer::None, &name, plan.recording_id.as_deref())?
+            .ok_or("no recording stream")?;
+        sinks.push(Box::new(RerunSink::new(stream, plan)));
+    }
     let rules = !study.stop.is_empty();
     if rules {
         let threshold = case.slip_rate_threshold();
@@ -168,8 +169,10 @@ fn run_member(
     };
     let outcome = run(scene.as_mut(), &case.time, &mut sinks, options);
     drop(sinks);
-    // A compaction that fails leaves the recording as written, which is complete.
-    let _ = crate::record::compact::compact(&rrd);
+    if study.recordings {
+        // A compaction that fails leaves the recording as written, which is complete.
+        let _ = crate::record::compact::compact(&rrd);
+    }
     let (ending, error, catalog) = match outcome {
         Outcome::Completed { catalog, .. } => ("completed".to_string(), None, catalog),
         Outcome::Failed { error, catalog } => ("failed".to_string(), Some(error.to_string()), catalog),

@@ -12,6 +12,7 @@
 //! "scene.normal_traction.left" = [300.0, 350.0]
 //! [[rows]]                                # optional: rows given one by one (same keys in each)
 //! "scene.normal_traction.right" = 1200.0
+//! recordings = true                       # optional: false writes the catalogs only
 //! [stop]                                  # optional: end a member early
 //! after_whole_rupture = true              # once a rupture has covered the whole surface
 //! quiet_for = 200.0                       # or once nothing has slipped for 200 s
@@ -45,6 +46,12 @@ struct StudyFile {
     rows: Vec<BTreeMap<String, toml::Value>>,
     #[serde(default)]
     stop: StopSpec,
+    #[serde(default = "yes")]
+    recordings: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 /// `[ensemble]`: member `k` moves `key` by `k × step` from the case's value.
@@ -84,6 +91,8 @@ pub struct Study {
     pub swept: usize,
     /// When a member stops before `t_end` ([`crate::study::stop`]).
     pub stop: StopSpec,
+    /// Whether each member writes its `.rrd` (`recordings = false`: catalogs only).
+    pub recordings: bool,
     pub rows: usize,
     pub members_per_row: usize,
     pub members: Vec<Member>,
@@ -113,7 +122,17 @@ pub fn load(path: &Path) -> Result<Study, String> {
     let mut varying: Vec<String> = rows[0].iter().map(|(key, _)| key.clone()).collect();
     let swept = varying.len();
     varying.extend(file.ensemble.as_ref().map(|e| e.key.clone()));
-    Ok(Study { name, case_path, varying, swept, stop: file.stop, rows: rows.len(), members_per_row: per_row, members })
+    Ok(Study {
+        name,
+        case_path,
+        varying,
+        swept,
+        stop: file.stop,
+        recordings: file.recordings,
+        rows: rows.len(),
+        members_per_row: per_row,
+        members,
+    })
 }
 
 /// The rules a study file's shape must meet before any member is built.
