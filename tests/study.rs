@@ -64,6 +64,10 @@ fn bad_study_files_are_refused_before_anything_runs() {
             "ensemble.step = 0 must be a finite number other than 0",
         ),
         ("colour = \"red\"\n", "unknown field `colour`"),
+        (
+            "[ensemble]\nkey = \"friction.structure0\"\nstep = 1e-12\nmembers = 1000000000000\n",
+            "the study has 1000000000000 members: at most 100000 are allowed",
+        ),
     ];
     for (body, expected) in cases {
         let path = dir.join("bad.toml");

@@ -135,9 +135,25 @@ pub fn load(path: &Path) -> Result<Study, String> {
     })
 }
 
+/// The most members a study may have: each is validated before any runs, and each writes its
+/// own files.
+pub const MAX_MEMBERS: usize = 100_000;
+
 /// The rules a study file's shape must meet before any member is built.
 fn check_shape(file: &StudyFile) -> Result<(), String> {
     file.stop.check()?;
+    let members = file
+        .sweep
+        .values()
+        .map(Vec::len)
+        .chain([file.rows.len().max(1), file.ensemble.as_ref().map_or(1, |e| e.members)])
+        .try_fold(1usize, |n, k| n.checked_mul(k));
+    if members.is_none_or(|n| n > MAX_MEMBERS) {
+        return Err(format!(
+            "the study has {} members: at most {MAX_MEMBERS} are allowed; split it into several study files",
+            members.map_or_else(|| "more than 2^64".to_string(), |n| n.to_string())
+        ));
+    }
     for (key, values) in &file.sweep {
         if values.is_empty() {
             return Err(format!("sweep.\"{key}\" = []: a sweep key needs at least one value"));
