@@ -47,6 +47,9 @@ pub fn command(args: StudyArgs) -> ExitCode {
         Err(e) => return fail(EXIT_INVALID, e),
     };
     let dir = args.out_dir.join(&study.name);
+    if let Err(e) = std::fs::create_dir_all(&dir) {
+        return fail(EXIT_INVALID, format!("cannot create the study's folder {}: {e}", dir.display()));
+    }
     let selected: Vec<_> = study.members.iter().filter(|m| args.shard.is_none_or(|s| s.holds(m.index))).collect();
     let jobs = args.jobs.unwrap_or_else(crate::study::ensemble::available_threads);
     let stop = Stop::catch();
