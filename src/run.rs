@@ -10,8 +10,8 @@ use crate::case::{Case, TimeSpec};
 use crate::catalog::events::{Catalog, EventDetector};
 use crate::frame::Ending;
 use crate::frame::{Frame, Layout, Needs};
-use crate::scene::{RunError, Scene};
-use crate::sink::{Sink, SinkError};
+use crate::scene::{RunError, Scene, SceneMemory};
+use crate::sink::{Sink, SinkError, SinkMemory};
 
 /// How a run ended. Every variant but `Sink` comes with the catalog up to the last good step.
 #[derive(Debug)]
@@ -46,6 +46,30 @@ pub struct LoopOptions<'a> {
     /// What the caller needs in every frame beyond what the sinks need (e.g.
     /// [`Needs::segment_state`], for `1/R*` at the onsets of the catalog's events).
     pub needs: Needs,
+    /// Checkpoints to write, if any.
+    pub checkpoints: Option<Checkpoints<'a>>,
+    /// The loop's memory from a checkpoint, to continue from (the scene already restored
+    /// from it): the sinks continue their files, and no initial frame is recorded.
+    pub resume: Option<RunMemory>,
+}
+
+/// Checkpoints of a run: after the first step at or past every multiple of `every` simulated
+/// seconds, and after the last step of a completed run, the loop's [`RunMemory`] (the sinks'
+/// files on the disk up to that step) is handed to `save`.
+pub struct Checkpoints<'a> {
+    pub every: f64,
+    pub save: &'a mut dyn FnMut(&RunMemory) -> Result<(), String>,
+}
+
+/// The run loop's state at a checkpoint: the steps taken and the last one's length, the
+/// scene, the event detector with its open events and merge windows, and every sink's memory.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct RunMemory {
+    pub steps: u64,
+    pub last_dt: f64,
+    pub scene: SceneMemory,
+    pub detector: EventDetector,
+    pub sinks: Vec<SinkMemory>,
 }
 
 impl LoopOptions<'_> {
@@ -57,6 +81,8 @@ impl LoopOptions<'_> {
             slip_rate_threshold: case.slip_rate_threshold(),
             merge_within: case.events.merge_within,
             needs: Needs::default(),
+            checkpoints: None,
+            resume: None,
         }
     }
 }
@@ -69,6 +95,20 @@ struct Observers<'s, 'b> {
 }
 
 impl Observers<'_, '_> {
+    /// Hands every sink's buffers to the disk and saves the loop's memory after step `steps`
+    /// (of `dt`) through `checkpoints`.
+    fn checkpoint(
+        &mut self,
+        scene: &dyn Scene,
+        steps: u64,
+        dt: f64,
+        checkpoints: &mut Checkpoints<'_>,
+    ) -> Result<(), SinkError> {
+        let sinks = self.sinks.iter_mut().map(|sink| sink.checkpoint()).collect::<Result<Vec<_>, _>>()?;
+        let memory = RunMemory { steps, last_dt: dt, scene: scene.memory(), detector: self.detector.clone(), sinks };
+        (checkpoints.save)(&memory).map_err(SinkError)
+    }
+
     fn record(&mut self, frame: Frame) -> Result<(), SinkError> {
         self.detector.record(&frame);
         let result = self.sinks.iter_mut().try_for_each(|sink| sink.record(&frame));
@@ -97,9 +137,11 @@ pub fn run(
     scene: &mut dyn Scene,
     time: &TimeSpec,
     sinks: &mut [Box<dyn Sink + '_>],
-    options: LoopOptions<'_>,
+    mut options: LoopOptions<'_>,
 ) -> Outcome {
-    let (mut observers, needs) = match begin(scene, sinks, &options) {
+    let resume = options.resume.take();
+    let mut k: u64 = resume.as_ref().map_or(0, |r| r.steps);
+    let (mut observers, needs) = match begin(scene, sinks, &options, resume) {
         Ok(begun) => begun,
         Err(e) => return Outcome::Sink(e),
     };
@@ -107,7 +149,9 @@ pub fn run(
     let adaptive = time.adaptive_tolerance().is_some();
     let start = Instant::now();
     let mut progress = Progress::new(options.progress);
-    let mut k: u64 = 0;
+    let mut checkpoints = options.checkpoints.take();
+    let mut next_checkpoint = checkpoints.as_ref().map_or(f64::INFINITY, |c| after(scene.time(), c.every));
+    let mut last_dt = 0.0;
     loop {
         let done = if adaptive { time.t_end - scene.time() <= 1e-9 * time.dt } else { k == steps };
         if done {
@@ -131,7 +175,13 @@ pub fn run(
                 };
             }
         };
-        if let Err(e) = observers.record(scene.frame(needs, dt)) {
+        last_dt = dt;
+        let mut recorded = observers.record(scene.frame(needs, dt));
+        if let Some(c) = checkpoints.as_mut().filter(|c| scene.time() >= next_checkpoint - 1e-9 * c.every) {
+            recorded = recorded.and_then(|()| observers.checkpoint(scene, k, dt, c));
+            next_checkpoint = after(scene.time(), c.every);
+        }
+        if let Err(e) = recorded {
             progress.clear();
             let _ = observers.finish(Ending::Failed);
             return Outcome::Sink(e);
@@ -139,6 +189,13 @@ pub fn run(
         progress.show(k, scene.time(), time.t_end, start);
     }
     progress.clear();
+    // The end of a completed run is a checkpoint too, from which it can be extended.
+    if let Some(c) = checkpoints.as_mut().filter(|c| next_checkpoint - c.every < scene.time() - 1e-9 * c.every)
+        && let Err(e) = observers.checkpoint(scene, k, last_dt, c)
+    {
+        let _ = observers.finish(Ending::Failed);
+        return Outcome::Sink(e);
+    }
     let statistics = scene.statistics();
     match observers.finish(Ending::Completed) {
         Ok(catalog) => Outcome::Completed {
@@ -153,13 +210,20 @@ pub fn run(
     }
 }
 
+/// The first multiple of `every` after `time` (with a little slack for rounding in the time).
+fn after(time: f64, every: f64) -> f64 {
+    every * ((time / every + 1e-9).floor() + 1.0)
+}
+
 /// Begins every sink (all of them even if one fails, so that the others are finished as
-/// valid, empty files of a failed run) and records the initial frame. Returns the observers
-/// and what every frame must hold.
+/// valid, empty files of a failed run) and records the initial frame, or, resuming, hands
+/// every sink its memory and the detector its own. Returns the observers and what every frame
+/// must hold.
 fn begin<'s, 'b>(
     scene: &dyn Scene,
     sinks: &'s mut [Box<dyn Sink + 'b>],
     options: &LoopOptions<'_>,
+    resume: Option<RunMemory>,
 ) -> Result<(Observers<'s, 'b>, Needs), SinkError> {
     let layout: Layout = scene.layout().clone();
     let mut begun = Ok(());
@@ -180,6 +244,16 @@ fn begin<'s, 'b>(
         observers.last = Some(scene.frame(needs, 0.0));
         let _ = observers.finish(Ending::Failed);
         return Err(e);
+    }
+    if let Some(memory) = resume {
+        let resumed = observers.sinks.iter_mut().try_for_each(|sink| sink.resume(&memory.sinks));
+        observers.detector = memory.detector;
+        observers.last = Some(scene.frame(needs, memory.last_dt));
+        if let Err(e) = resumed {
+            let _ = observers.finish(Ending::Failed);
+            return Err(e);
+        }
+        return Ok((observers, needs));
     }
     if let Err(e) = observers.record(scene.frame(needs, 0.0)) {
         let _ = observers.finish(Ending::Failed);

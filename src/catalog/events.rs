@@ -19,7 +19,7 @@ pub struct Catalog {
 }
 
 /// One slip event of one segment.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SlipEvent {
     pub segment: usize,
     /// Time the slip rate rose through the threshold (s).
@@ -60,7 +60,7 @@ pub struct Rupture {
     pub friction_force_drop: f64,
 }
 
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
 struct Sample {
     time: f64,
     slip: f64,
@@ -70,7 +70,7 @@ struct Sample {
     structure: f64,
 }
 
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, serde::Serialize, serde::Deserialize)]
 struct Open {
     onset: f64,
     slip_at_onset: f64,
@@ -80,7 +80,7 @@ struct Open {
     peak: f64,
 }
 
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 struct SegmentTrack {
     /// Previous step's (midpoint, slip rate).
     rate: Option<(f64, f64)>,
@@ -113,7 +113,7 @@ impl SegmentTrack {
 }
 
 /// Finds slip events in a stream of frames.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct EventDetector {
     threshold: f64,
     merge_within: f64,

@@ -1,11 +1,13 @@
-//! The command line: `slipfront run | check | figures | replay | study`, one file per command.
+//! The command line: `slipfront run | resume | check | figures | replay | study`, one file per command.
 
 pub mod check;
+pub mod checkpoints;
 pub mod common;
 pub mod figures;
 pub mod isolated;
 pub mod outputs;
 pub mod replay;
+pub mod resume;
 pub mod run;
 pub mod signals;
 pub mod study;
@@ -18,6 +20,7 @@ pub use check::CheckArgs;
 pub use common::{EXIT_FAILED, EXIT_INTERRUPTED, EXIT_INVALID, ViewerArgs};
 pub use figures::FiguresArgs;
 pub use replay::ReplayArgs;
+pub use resume::ResumeArgs;
 pub use run::RunArgs;
 pub use study::StudyArgs;
 
@@ -40,6 +43,14 @@ pub enum Command {
     /// SIGHUP, 138 and 140 by SIGUSR1 and SIGUSR2 (outputs finished up to the last step in
     /// every case).
     Run(RunArgs),
+    /// Continue a run from its checkpoint (written by `slipfront run --checkpoint-every`), to
+    /// its end or, with --set time.t_end=T, beyond it.
+    ///
+    /// The recording, MCAP log and catalogs are left as those of one uninterrupted run (same
+    /// recording id; the parts written after the checkpoint are written again). Exit codes as
+    /// for `run`; 2 also for a checkpoint that is not one, is damaged, cut short, of another
+    /// version, or does not fit its case.
+    Resume(ResumeArgs),
     /// Check a recording: the schema's entities, sim_time monotonic and covering the run, no NaN
     /// or Inf, equal row counts, the stored blueprint, and optional expectations.
     ///
@@ -72,6 +83,7 @@ pub enum Command {
 pub fn main_with(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Run(args) => run::command(args),
+        Command::Resume(args) => resume::command(args),
         Command::Check(args) => check::command(args),
         Command::Figures(args) => figures::command(args),
         Command::Replay(args) => replay::command(args),

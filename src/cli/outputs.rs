@@ -28,8 +28,14 @@ struct Held {
 
 impl Drop for Locks {
     fn drop(&mut self) {
+        use std::os::unix::fs::MetadataExt;
         for held in &self.0 {
-            if held.created && held.file.metadata().is_ok_and(|m| m.len() == 0) {
+            // Only the file the claim created: a resumed run renames its continued file over it.
+            let same = std::fs::metadata(&held.path)
+                .ok()
+                .zip(held.file.metadata().ok())
+                .is_some_and(|(now, locked)| now.ino() == locked.ino() && now.dev() == locked.dev());
+            if held.created && same && held.file.metadata().is_ok_and(|m| m.len() == 0) {
                 let _ = std::fs::remove_file(&held.path);
             }
         }

@@ -7,12 +7,14 @@ use std::process::ExitCode;
 use clap::Args;
 
 use crate::case;
+use crate::cli::checkpoints::{self, Saver};
 use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, compact_recording, fail, print};
 use crate::cli::outputs::{self, Named, check_writable};
 use crate::cli::signals::Stop;
 use crate::frame::SceneKind;
+use crate::record::checkpoint::{CheckpointInfo, SavedCase, SavedOutputs};
 use crate::record::schema::RecordingPlan;
-use crate::run::{LoopOptions, Outcome, run};
+use crate::run::{Checkpoints, LoopOptions, Outcome, RunMemory, run};
 use crate::scene;
 use crate::sink::Sink;
 use crate::sink::catalog::CatalogSink;
@@ -52,6 +54,15 @@ pub struct RunArgs {
     /// `slipfront replay`).
     #[arg(long, value_name = "PATH")]
     pub mcap: Option<PathBuf>,
+    /// Write a checkpoint every SECONDS of simulated time, and at the end, to
+    /// <out-dir>/<case-stem>.ckpt (the latest replaces the one before), from which
+    /// `slipfront resume` continues the run or extends it. Without a value: every tenth of
+    /// time.t_end.
+    #[arg(long, value_name = "SECONDS", num_args = 0..=1, default_missing_value = "")]
+    pub checkpoint_every: Option<String>,
+    /// With --checkpoint-every, also keep each checkpoint as <case-stem>.<time>s.ckpt.
+    #[arg(long, requires = "checkpoint_every")]
+    pub keep_checkpoints: bool,
     /// Print nothing but errors: no progress bar, no summary.
     #[arg(long, short)]
     pub quiet: bool,
@@ -77,27 +88,37 @@ pub fn command(args: RunArgs) -> ExitCode {
         Ok(sinks) => sinks,
         Err(exit) => return exit,
     };
+    let mut saver = match outputs.saver(&args, &case) {
+        Ok(saver) => saver,
+        Err(exit) => return exit,
+    };
     let stop = Stop::catch();
+    let mut save = |memory: &RunMemory| saver.as_mut().map_or(Ok(()), |s| s.save(memory));
+    let checkpoints = outputs.every.map(|every| Checkpoints { every, save: &mut save });
     let outcome = run(
         scene.as_mut(),
         &case.time,
         &mut sinks,
-        LoopOptions { progress: !args.quiet, interrupt: Some(&stop.flag), ..LoopOptions::for_case(&case) },
+        LoopOptions { progress: !args.quiet, interrupt: Some(&stop.flag), checkpoints, ..LoopOptions::for_case(&case) },
     );
     drop(sinks);
     if let Some(rrd) = &outputs.rrd {
         compact_recording(rrd);
     }
-    let written = outputs.written(&args, block);
-    report(&args, &case, outcome, &written, &stop, scene.time())
+    let mut written = outputs.written(&args, block);
+    if let Some(saver) = &saver {
+        written = format!("{written}; {}", saver.summary());
+    }
+    report(Reporting { case_file: &args.case, quiet: args.quiet }, &case, outcome, &written, &stop, scene.time())
 }
 
-/// Where a run's outputs go.
+/// Where a run's outputs go, and how often it checkpoints (simulated s).
 struct Outputs {
     stem: String,
     events: PathBuf,
     ruptures: PathBuf,
     rrd: Option<PathBuf>,
+    every: Option<f64>,
 }
 
 /// Reads and checks the case and the output folder, and names the outputs.
@@ -113,7 +134,14 @@ fn prepare(args: &RunArgs) -> Result<(case::Case, Outputs), ExitCode> {
     let events = args.events.clone().unwrap_or_else(|| args.out_dir.join(format!("{stem}.events.csv")));
     let ruptures = ruptures_path_for(&events);
     let rrd = (!args.no_rrd).then(|| args.rrd.clone().unwrap_or_else(|| args.out_dir.join(format!("{stem}.rrd"))));
-    Ok((case, Outputs { stem, events, ruptures, rrd }))
+    let every = match &args.checkpoint_every {
+        None => None,
+        Some(value) => Some(
+            checkpoints::interval((!value.is_empty()).then_some(value.as_str()), case.time.t_end)
+                .map_err(|e| fail(EXIT_INVALID, e))?,
+        ),
+    };
+    Ok((case, Outputs { stem, events, ruptures, rrd, every }))
 }
 
 impl Outputs {
@@ -128,9 +156,41 @@ impl Outputs {
             sinks.push(Box::new(McapSink::create(path, plan.clone()).map_err(|e| fail(EXIT_INVALID, e))?));
         }
         if let Some(stream) = stream {
-            sinks.push(Box::new(RerunSink::new(stream, plan)));
+            let sink = RerunSink::new(stream, plan);
+            sinks.push(Box::new(match &self.rrd {
+                Some(path) => sink.with_file(path),
+                None => sink,
+            }));
         }
         Ok(sinks)
+    }
+
+    /// The checkpoints' writer, if the run checkpoints: the case's text and overrides, where
+    /// the outputs go, the recording id and the interval.
+    fn saver(&self, args: &RunArgs, case: &case::Case) -> Result<Option<Saver>, ExitCode> {
+        let Some(every) = self.every else { return Ok(None) };
+        let text = std::fs::read_to_string(&args.case)
+            .map_err(|e| fail(EXIT_INVALID, format!("{}: {e}", args.case.display())))?;
+        let absolute = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+        let info = CheckpointInfo {
+            written_by: env!("CARGO_PKG_VERSION").into(),
+            case: SavedCase {
+                path: args.case.clone(),
+                stem: self.stem.clone(),
+                text,
+                overrides: args.overrides.clone(),
+            },
+            outputs: SavedOutputs {
+                out_dir: absolute(&args.out_dir),
+                events: absolute(&self.events),
+                ruptures: absolute(&self.ruptures),
+                rrd: self.rrd.as_deref().map(absolute),
+                mcap: args.mcap.as_deref().map(absolute),
+            },
+            recording_id: RecordingPlan::for_case(&self.stem, case).recording_id,
+            every,
+        };
+        Ok(Some(Saver::new(&args.out_dir, info, args.keep_checkpoints)))
     }
 
     /// Every file the run writes, with the option that names it: the recording, the MCAP
@@ -157,11 +217,24 @@ impl Outputs {
     }
 }
 
+/// What the summary names: the case file, and whether to print it at all.
+pub(crate) struct Reporting<'a> {
+    pub case_file: &'a Path,
+    pub quiet: bool,
+}
+
 /// The summary line of a completed run, or the error of one that was not, and its exit code.
-fn report(args: &RunArgs, case: &case::Case, outcome: Outcome, written: &str, stop: &Stop, time: f64) -> ExitCode {
+pub(crate) fn report(
+    reporting: Reporting<'_>,
+    case: &case::Case,
+    outcome: Outcome,
+    written: &str,
+    stop: &Stop,
+    time: f64,
+) -> ExitCode {
     match outcome {
         Outcome::Completed { steps, rejected, wall, catalog, .. } => {
-            if !args.quiet {
+            if !reporting.quiet {
                 let rejected = if case.time.adaptive_tolerance().is_some() {
                     format!(" (adaptive, {rejected} rejected)")
                 } else {
@@ -169,7 +242,7 @@ fn report(args: &RunArgs, case: &case::Case, outcome: Outcome, written: &str, st
                 };
                 let line = format!(
                     "slipfront: {} ({}): {steps} steps{rejected} to t = {} s in {:.2} s; {} slip events, {} ruptures: {written}",
-                    args.case.display(),
+                    reporting.case_file.display(),
                     case.scene.kind(),
                     case.time.t_end,
                     wall.as_secs_f64(),
@@ -202,7 +275,7 @@ fn report(args: &RunArgs, case: &case::Case, outcome: Outcome, written: &str, st
 /// Refuses a block mesh whose estimated memory ([`scene::block::estimated_memory`]) exceeds
 /// what the machine has available (`MemAvailable` of `/proc/meminfo`; no check where that is
 /// unknown).
-fn fits_in_memory(case: &case::Case) -> Result<(), String> {
+pub(crate) fn fits_in_memory(case: &case::Case) -> Result<(), String> {
     let case::SceneSpec::Block(b) = &case.scene else { return Ok(()) };
     let (dofs, bytes) = scene::block::estimated_memory(b.nx, b.ny);
     let Some(available) = available_memory() else { return Ok(()) };
@@ -234,7 +307,7 @@ fn human_bytes(bytes: f64) -> String {
 }
 
 /// `<dir>/<x>.ruptures.csv` beside `<dir>/<x>.events.csv` (or `<stem>.ruptures.csv`).
-fn ruptures_path_for(events: &Path) -> PathBuf {
+pub(crate) fn ruptures_path_for(events: &Path) -> PathBuf {
     let name = events.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let stem = name.strip_suffix(".events.csv").or_else(|| name.strip_suffix(".csv")).unwrap_or(&name);
     events.with_file_name(format!("{stem}.ruptures.csv"))

@@ -35,6 +35,7 @@ use crate::dynamics::contact::ContactBoundary;
 use crate::dynamics::control::AdaptiveError;
 use crate::dynamics::error::{MAX_HALVINGS, StepError};
 use crate::dynamics::integrator::Integrator;
+use crate::dynamics::memory::{CentralMemory, IntegratorMemory, check_points, mismatch};
 use crate::dynamics::state::State;
 use crate::dynamics::system::System;
 use crate::friction::{ContactState, FrictionError, FrictionParams, Restart, Update, update_from};
@@ -293,6 +294,30 @@ impl CentralDifference {
 impl Integrator for CentralDifference {
     fn advance(&mut self, system: &mut System, limit: f64) -> Result<f64, AdaptiveError> {
         self.step(system, limit).map(|()| limit).map_err(AdaptiveError::Step)
+    }
+
+    fn memory(&self) -> IntegratorMemory {
+        IntegratorMemory::Central(CentralMemory {
+            restarts: self.restarts.clone(),
+            contact_displacement: self.contact_displacement.clone(),
+            omega_max: self.omega_max,
+        })
+    }
+
+    fn restore(&mut self, system: &System, memory: IntegratorMemory) -> Result<(), String> {
+        let IntegratorMemory::Central(memory) = memory else {
+            return Err(mismatch(format!("saved by {}, the case steps with central differences", memory.name())));
+        };
+        let points = system.contact.points.len();
+        check_points(&memory.restarts, points, "restarts")?;
+        check_points(&memory.contact_displacement, points, "contact displacements")?;
+        if !(memory.omega_max.is_finite() && memory.omega_max > 0.0) {
+            return Err(mismatch("the highest frequency is not a positive number"));
+        }
+        self.restarts = memory.restarts;
+        self.contact_displacement = memory.contact_displacement;
+        self.omega_max = memory.omega_max;
+        Ok(())
     }
 }
 

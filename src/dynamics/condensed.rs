@@ -142,6 +142,18 @@ impl Condensation {
         v.iter().zip(gkv).map(|(a, b)| a + b).collect()
     }
 
+    /// The contact stiffnesses the kept Newton matrix was factored at, if one is kept.
+    pub(crate) fn newton_stiffness(&self) -> Option<Vec<f64>> {
+        self.newton.borrow().as_ref().map(|m| m.stiffness.clone())
+    }
+
+    /// Factors and keeps the Newton matrix of `stiffness`, as [`Self::solve_newton`] last did.
+    pub(crate) fn keep_newton(&self, stiffness: &[f64]) -> Result<(), FactorError> {
+        let matrix = self.newton_matrix(stiffness)?;
+        *self.newton.borrow_mut() = Some(matrix);
+        Ok(())
+    }
+
     /// Solves Newton's system `(I + G K_c) δ = rhs` in place: by the kept LU if `K_c` is the
     /// same, else by GMRES preconditioned with it, else by a new LU.
     pub(crate) fn solve_newton(&self, stiffness: &[f64], rhs: &mut [f64]) -> Result<(), FactorError> {

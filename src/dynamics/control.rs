@@ -4,7 +4,7 @@
 use crate::dynamics::error::StepError;
 
 /// Step-size control of one run.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StepControl {
     /// Local error allowed per second of simulated time (1/s), in the scaled units described
     /// in the module docs.
@@ -21,6 +21,19 @@ impl StepControl {
     /// Starts with a step of `dt`.
     pub fn new(tolerance: f64, dt: f64, dt_max: f64, dt_min: f64) -> Self {
         Self { tolerance, dt_max, dt_min, next: dt.min(dt_max) }
+    }
+
+    /// Continues from a saved control: its next step, clamped to this run's limits (the same
+    /// unless the run was extended).
+    pub fn resume_from(&mut self, saved: &StepControl) -> Result<(), String> {
+        if !(saved.next.is_finite() && saved.next > 0.0) {
+            return Err(format!(
+                "the checkpoint's next step {} s is not a positive number",
+                crate::validate::shortest(saved.next)
+            ));
+        }
+        self.next = saved.next.min(self.dt_max);
+        Ok(())
     }
 
     /// The next step after one of `h` whose estimated error was `error`: `h` times

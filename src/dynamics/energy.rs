@@ -11,7 +11,7 @@ use crate::dynamics::state::State;
 /// `initial + work_base + work_load = kinetic + strain + contact_elastic + dissipation + numerical`,
 /// where `initial` is what was stored when tracking began and `numerical` is what the
 /// integrator itself dissipates (or adds).
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct EnergyLedger {
     /// `∫ Σ w f_t v_base dt`: work the moving base does through the contact.
     pub work_base: f64,

@@ -4,6 +4,8 @@
 //! [`super::method`] says which one a case gets.
 
 use crate::dynamics::control::AdaptiveError;
+use crate::dynamics::memory::IntegratorMemory;
+pub use crate::dynamics::statistics::Statistics;
 use crate::dynamics::system::System;
 
 /// A time integrator.
@@ -13,22 +15,15 @@ pub trait Integrator: Send {
     /// ones, shortened to end just past the first located slip-threshold crossing.
     fn advance(&mut self, system: &mut System, limit: f64) -> Result<f64, AdaptiveError>;
 
+    /// What the method remembers between steps, for a checkpoint.
+    fn memory(&self) -> IntegratorMemory;
+
+    /// Takes back a [`Self::memory`] of the same method on `system` (already restored), so
+    /// that the next step is the one the saved run would have taken.
+    fn restore(&mut self, system: &System, memory: IntegratorMemory) -> Result<(), String>;
+
     /// What the method has counted so far.
     fn statistics(&self) -> Statistics {
         Statistics::default()
     }
-}
-
-/// What an integrator has counted over a run.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct Statistics {
-    /// Adaptive steps accepted.
-    pub accepted: u64,
-    /// Adaptive attempts rejected by the error estimate or by a failed solve.
-    pub rejected: u64,
-    /// Newton iterations of an implicit Runge–Kutta method's stages: one right-hand side and
-    /// one solve with the factored operator each.
-    pub newton_iterations: u64,
-    /// Factorizations of its operator (linearizations).
-    pub factorizations: u64,
 }

@@ -57,6 +57,12 @@ impl Operator {
         Ok(Self { matrix, diagonal, stiffness_entries, point_entries, cholesky, factored: None })
     }
 
+    /// The mass coefficient and contact stiffnesses factored last, if the last factoring
+    /// succeeded.
+    pub fn factored(&self) -> Option<&(f64, Vec<f64>)> {
+        self.factored.as_ref()
+    }
+
     /// Assembles and factors `c₀ M + K + K_c` unless the factored one is the same;
     /// `contact_stiffness` holds each point's `-w ∂f_t/∂ū`.
     pub fn factor(

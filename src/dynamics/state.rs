@@ -4,7 +4,7 @@
 use crate::friction::ContactState;
 
 /// Kinematic and contact state at one instant.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct State {
     /// Time (s).
     pub time: f64,

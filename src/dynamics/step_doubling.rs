@@ -21,6 +21,7 @@
 
 use crate::dynamics::control::{AdaptiveError, ErrorScaling, StepControl};
 use crate::dynamics::integrator::{Integrator, Statistics};
+use crate::dynamics::memory::{IntegratorMemory, mismatch};
 use crate::dynamics::state::State;
 use crate::dynamics::system::System;
 use crate::dynamics::wilson::Wilson;
@@ -76,6 +77,28 @@ impl Integrator for StepDoubling {
                     None => AdaptiveError::StepTooSmall { dt: control.next, dt_min: control.dt_min, error },
                 });
             }
+        }
+    }
+
+    fn memory(&self) -> IntegratorMemory {
+        IntegratorMemory::StepDoubling {
+            wilson: self.wilson.remembered(),
+            control: self.control.clone(),
+            statistics: self.statistics,
+        }
+    }
+
+    /// Takes back the Wilson memory, the counts and the next step; the step limits stay the
+    /// case's.
+    fn restore(&mut self, system: &System, memory: IntegratorMemory) -> Result<(), String> {
+        match memory {
+            IntegratorMemory::StepDoubling { wilson, control, statistics } => {
+                self.wilson.take_back(system, wilson)?;
+                self.control.resume_from(&control)?;
+                self.statistics = statistics;
+                Ok(())
+            }
+            other => Err(mismatch(format!("saved by {}, the case steps with adaptive Wilson steps", other.name()))),
         }
     }
 

@@ -33,6 +33,17 @@ pub struct System {
     split_steps: u64,
 }
 
+/// Everything of a [`System`] that a checkpoint keeps ([`System::memory`]): the state, the
+/// energy ledger, the count of split steps, and what Newton's operator was last factored at
+/// (the implicit Runge–Kutta stages reuse that factorization until they ask for another).
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct SystemMemory {
+    pub state: State,
+    ledger: Option<EnergyLedger>,
+    split_steps: u64,
+    factored: Option<(f64, Vec<f64>)>,
+}
+
 /// A saved state of [`System`] (see [`System::snapshot`]).
 #[derive(Clone)]
 pub(crate) struct Snapshot {
@@ -131,6 +142,47 @@ impl System {
     /// Solves with the operator [`Self::factor_operator`] factored last.
     pub(crate) fn solve_operator(&self, rhs: &mut [f64]) {
         self.operator.as_ref().expect("the operator is factored before it is solved with").solve_in_place(rhs);
+    }
+
+    /// What a checkpoint keeps of the system.
+    pub fn memory(&self) -> SystemMemory {
+        SystemMemory {
+            state: self.state.clone(),
+            ledger: self.ledger,
+            split_steps: self.split_steps,
+            factored: self.operator.as_ref().and_then(|o| o.factored().cloned()),
+        }
+    }
+
+    /// Takes back a [`Self::memory`] saved from a system of the same case; refuses one whose
+    /// sizes do not fit this system.
+    pub fn restore_memory(&mut self, memory: SystemMemory) -> Result<(), String> {
+        let (n, m) = (self.body.dofs(), self.contact.points.len());
+        let s = &memory.state;
+        let fits = [&s.displacement, &s.velocity, &s.acceleration].iter().all(|v| v.len() == n)
+            && s.contact.len() == m
+            && s.plastic_increment.len() == m
+            && (s.plastic_rate.is_empty() || s.plastic_rate.len() == m)
+            && memory.factored.as_ref().is_none_or(|(_, k)| k.len() == m);
+        if !fits {
+            return Err(format!(
+                "the checkpoint's state ({} unknowns, {} contact points) does not fit this case ({n} unknowns, {m} \
+                 contact points)",
+                s.displacement.len(),
+                s.contact.len()
+            ));
+        }
+        if !(s.time.is_finite() && s.time >= 0.0) {
+            return Err(format!("the checkpoint's time {} is not a time", crate::validate::shortest(s.time)));
+        }
+        if let Some((c0, stiffness)) = &memory.factored {
+            self.factor_operator(*c0, stiffness)
+                .map_err(|e| format!("cannot factor the checkpoint's operator: {e}"))?;
+        }
+        self.state = memory.state;
+        self.ledger = memory.ledger.or(self.ledger);
+        self.split_steps = memory.split_steps;
+        Ok(())
     }
 
     /// Keeps an [`EnergyLedger`] from now on (costs one product with `K` per step).

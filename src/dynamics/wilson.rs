@@ -27,6 +27,7 @@ use crate::dynamics::condensed::Condensation;
 use crate::dynamics::control::AdaptiveError;
 use crate::dynamics::error::{MAX_HALVINGS, StepError};
 use crate::dynamics::integrator::Integrator;
+use crate::dynamics::memory::{IntegratorMemory, WilsonMemory, check_points, mismatch};
 use crate::dynamics::newton::{NewtonProblem, newton};
 use crate::dynamics::settings::LinearSolver;
 use crate::dynamics::state::State;
@@ -227,10 +228,54 @@ impl Wilson {
     }
 }
 
+impl Wilson {
+    /// The restarts and the kept operators' `τ` and Newton factorizations.
+    pub(crate) fn remembered(&self) -> WilsonMemory {
+        WilsonMemory {
+            restarts: self.restarts.clone(),
+            condensations: self.condensations.iter().map(|c| (c.tau, c.newton_stiffness())).collect(),
+        }
+    }
+
+    /// Takes back [`Self::remembered`]: the kept operators are factored again at their `τ`,
+    /// and their Newton matrices at the stiffnesses saved.
+    pub(crate) fn take_back(&mut self, system: &System, memory: WilsonMemory) -> Result<(), String> {
+        if !memory.restarts.is_empty() {
+            check_points(&memory.restarts, system.contact.points.len(), "restarts")?;
+        }
+        let mut condensations = Vec::with_capacity(memory.condensations.len());
+        for (tau, newton) in memory.condensations {
+            if !(tau.is_finite() && tau > 0.0) || system.settings.linear_solver != LinearSolver::Condensed {
+                return Err(mismatch("a condensed operator saved for a case that does not condense"));
+            }
+            let c = Condensation::new(&system.body, &system.contact.points, tau).map_err(mismatch)?;
+            if let Some(stiffness) = newton {
+                check_points(&stiffness, c.points.len(), "contact stiffnesses")?;
+                c.keep_newton(&stiffness).map_err(mismatch)?;
+            }
+            condensations.push(c);
+        }
+        self.restarts = memory.restarts;
+        self.condensations = condensations;
+        Ok(())
+    }
+}
+
 impl Integrator for Wilson {
     /// One fixed step of `limit` ([`Wilson::step`]).
     fn advance(&mut self, system: &mut System, limit: f64) -> Result<f64, AdaptiveError> {
         self.step(system, limit).map(|()| limit).map_err(AdaptiveError::Step)
+    }
+
+    fn memory(&self) -> IntegratorMemory {
+        IntegratorMemory::Wilson(self.remembered())
+    }
+
+    fn restore(&mut self, system: &System, memory: IntegratorMemory) -> Result<(), String> {
+        match memory {
+            IntegratorMemory::Wilson(memory) => self.take_back(system, memory),
+            other => Err(mismatch(format!("saved by {}, the case steps with Wilson's method", other.name()))),
+        }
     }
 }
 

@@ -8,7 +8,7 @@ use crate::friction::params::FrictionParams;
 /// points from the base into the block, so `f_n > 0` in compression; in 2D the tangential axis is
 /// `x` and `f_t` is signed. The normal sliding ratio `R` is not stored: the subloading surface
 /// passes through the current traction, so it is derived ([`ContactState::sliding_ratio`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct ContactState {
     /// Tangential traction `f_t` (Pa), signed along `x`.
     pub traction_t: f64,

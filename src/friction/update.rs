@@ -55,7 +55,7 @@ pub struct Update {
 /// (Newton's next trial of the step, the same step over another `dt`, or the next step), which
 /// then starts next to its root instead of from the elastic guess. It is taken only where the
 /// root is unique (see [`update_from`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Restart {
     /// `R` at the start of the step on the loaded side.
     ratio_start: f64,
@@ -68,7 +68,7 @@ pub struct Restart {
 }
 
 /// The end of a consistency solve in its unknown `v = ln(-ln R)`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 struct Root {
     ln_u: f64,
     /// `R`.

@@ -3,8 +3,10 @@
 //! messages ([`mcap`], [`proto`]). Writers ([`crate::sink`]) and readers ([`crate::inspect`],
 //! [`crate::study`]) both use it.
 
+pub mod checkpoint;
 pub mod colormap;
 pub mod compact;
+pub mod continuation;
 pub mod digest;
 pub mod mcap;
 pub mod proto;

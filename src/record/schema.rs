@@ -480,6 +480,16 @@ impl Decimator {
         self.last = Some(frame.step);
         keep
     }
+
+    /// The step recorded last, for a checkpoint.
+    pub fn memory(&self) -> Option<u64> {
+        self.last
+    }
+
+    /// Continues after the step recorded last.
+    pub fn resume(&mut self, last: Option<u64>) {
+        self.last = last;
+    }
 }
 
 /// Frames of the drawn views (the block, the profiles along x) over a run: a view frame is
@@ -534,6 +544,17 @@ impl ViewDecimator {
         let keep = self.last.map(|(step, _)| step) != Some(frame.step);
         self.last = Some((frame.step, frame.time));
         keep
+    }
+
+    /// The last view frame's step and time, and which segments slipped at the last recorded
+    /// frame, for a checkpoint.
+    pub fn memory(&self) -> (Option<(u64, f64)>, Vec<bool>) {
+        (self.last, self.slipping.clone())
+    }
+
+    /// Continues from [`Self::memory`].
+    pub fn resume(&mut self, (last, slipping): (Option<(u64, f64)>, Vec<bool>)) {
+        (self.last, self.slipping) = (last, slipping);
     }
 }
 

@@ -5,7 +5,7 @@
 use crate::case::Case;
 use crate::dynamics::{AdaptiveError, Integrator, Statistics, System};
 use crate::frame::{Frame, Layout, Needs};
-use crate::scene::interface::{RunError, Scene, step_error};
+use crate::scene::interface::{RunError, Scene, SceneMemory, step_error};
 
 /// What distinguishes one dynamic scene from another.
 pub trait Shape: Send {
@@ -67,5 +67,19 @@ impl<S: Shape> Scene for DynamicScene<S> {
 
     fn frame(&self, needs: Needs, dt: f64) -> Frame {
         self.shape.frame(&self.system, needs, dt)
+    }
+
+    fn memory(&self) -> SceneMemory {
+        SceneMemory::Dynamic { system: Box::new(self.system.memory()), integrator: Box::new(self.integrator.memory()) }
+    }
+
+    /// The system first, so that the integrator's memory is checked against the state it
+    /// continues.
+    fn restore(&mut self, memory: SceneMemory) -> Result<(), String> {
+        let SceneMemory::Dynamic { system, integrator } = memory else {
+            return Err("the checkpoint holds a point scene, the case a body".into());
+        };
+        self.system.restore_memory(*system)?;
+        self.integrator.restore(&self.system, *integrator)
     }
 }

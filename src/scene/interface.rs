@@ -3,7 +3,9 @@
 
 use std::fmt;
 
-use crate::dynamics::{Statistics, StepError};
+use serde::{Deserialize, Serialize};
+
+use crate::dynamics::{IntegratorMemory, Statistics, StepError, SystemMemory};
 use crate::frame::{Frame, Layout, Needs};
 use crate::friction::{ContactState, FrictionError};
 
@@ -43,6 +45,31 @@ pub trait Scene: Send {
     }
     /// Describes the current state; `dt` is the step just taken.
     fn frame(&self, needs: Needs, dt: f64) -> Frame;
+    /// Everything needed to continue from the current state, for a checkpoint.
+    fn memory(&self) -> SceneMemory;
+    /// Continues from a [`Self::memory`] of a scene built from the same case; refuses one that
+    /// does not fit (another scene, another mesh).
+    fn restore(&mut self, memory: SceneMemory) -> Result<(), String>;
+}
+
+/// A scene's state as data ([`Scene::memory`]).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub enum SceneMemory {
+    /// A body stepped by an integrator: the system and the integrator's memory.
+    Dynamic { system: Box<SystemMemory>, integrator: Box<IntegratorMemory> },
+    /// The point scene: its contact state, time, step, last plastic increment and the slip
+    /// it has been driven through.
+    Point { state: ContactState, time: f64, step: u64, last_increment: f64, relative_slip: f64 },
+}
+
+impl SceneMemory {
+    /// Simulated time (s) and steps taken.
+    pub fn time_and_step(&self) -> (f64, u64) {
+        match self {
+            SceneMemory::Dynamic { system, .. } => (system.state.time, system.state.step),
+            SceneMemory::Point { time, step, .. } => (*time, *step),
+        }
+    }
 }
 
 /// Turns a dynamic step failure into a [`RunError`] for the scene's segment numbering.

@@ -9,7 +9,7 @@ pub mod sample;
 pub mod spring_block;
 
 use crate::case::{Case, SceneSpec};
-pub use crate::scene::interface::{RunError, Scene};
+pub use crate::scene::interface::{RunError, Scene, SceneMemory};
 
 /// Builds the scene a case describes.
 pub fn build(case: &Case) -> Result<Box<dyn Scene>, RunError> {

@@ -3,7 +3,7 @@
 use crate::case::PointSpec;
 use crate::frame::{Frame, Layout, Needs, SceneKind, SegmentInfo};
 use crate::friction::{ContactState, FrictionParams, update};
-use crate::scene::interface::{RunError, Scene, friction_error};
+use crate::scene::interface::{RunError, Scene, SceneMemory, friction_error};
 use crate::scene::sample::segment_sample;
 
 /// One contact point under constant normal traction and a piecewise-constant relative sliding
@@ -90,6 +90,28 @@ impl Scene for PointScene {
         self.step += 1;
         self.last_increment = increment;
         Ok(dt)
+    }
+
+    fn memory(&self) -> SceneMemory {
+        SceneMemory::Point {
+            state: self.state,
+            time: self.time,
+            step: self.step,
+            last_increment: self.last_increment,
+            relative_slip: self.relative_slip,
+        }
+    }
+
+    fn restore(&mut self, memory: SceneMemory) -> Result<(), String> {
+        let SceneMemory::Point { state, time, step, last_increment, relative_slip } = memory else {
+            return Err("the checkpoint holds a body, the case a point scene".into());
+        };
+        if !(time.is_finite() && time >= 0.0) {
+            return Err(format!("the checkpoint's time {} is not a time", crate::validate::shortest(time)));
+        }
+        (self.state, self.time, self.step, self.last_increment, self.relative_slip) =
+            (state, time, step, last_increment, relative_slip);
+        Ok(())
     }
 
     fn frame(&self, needs: Needs, dt: f64) -> Frame {

@@ -19,7 +19,8 @@ use crate::record::mcap::{self as mcap_log, LogHeader, nanos};
 use crate::record::proto;
 use crate::record::schema::{Decimator, RecordingPlan, RunEnding, selection};
 use crate::sink::cadence::Cadence;
-use crate::sink::{Sink, SinkError};
+use crate::sink::memory::LogMemory;
+use crate::sink::{Continuation, Sink, SinkError, SinkMemory, sync};
 
 /// Writes a slipfront MCAP log.
 pub struct McapSink {
@@ -36,6 +37,8 @@ pub struct McapSink {
     cadence: Cadence,
     last_time: f64,
     needs: Needs,
+    /// The log this one continues, for a resumed run.
+    continuation: Option<Continuation>,
 }
 
 impl McapSink {
@@ -61,7 +64,54 @@ impl McapSink {
             cadence: Cadence::default(),
             last_time: 0.0,
             needs,
+            continuation: None,
         })
+    }
+
+    /// The same sink continuing the log of an interrupted run ([`Continuation`]); it was
+    /// created at the continuation's `writing` path.
+    pub fn continuing(mut self, continuation: Continuation) -> Self {
+        self.continuation = Some(continuation);
+        self
+    }
+
+    /// The topics written once per recorded row.
+    fn row_topics(&self) -> Vec<&'static str> {
+        let mut topics = vec![mcap_log::TOPIC_SEGMENTS, mcap_log::TOPIC_TOTALS];
+        if !self.nodes.is_empty() {
+            topics.push(mcap_log::TOPIC_NODES);
+        }
+        if self.mesh {
+            topics.push(mcap_log::TOPIC_MESH);
+        }
+        topics
+    }
+
+    /// Copies the continued log's rows up to the checkpoint into this one, checks that they
+    /// are all there, and renames the file to its target.
+    fn continue_log(&mut self, memory: &LogMemory) -> Result<(), SinkError> {
+        let Some(continuation) = self.continuation.clone() else { return Ok(()) };
+        let topics = self.row_topics();
+        let Some(writer) = self.writer.as_mut() else {
+            return Err(SinkError(format!("{} was abandoned after an earlier write error", self.path.display())));
+        };
+        let copied =
+            crate::record::continuation::copy_log(&continuation.previous, writer, &self.channels, &topics, memory.rows)
+                .map_err(SinkError)?;
+        if let Some((topic, count)) = copied.iter().find(|(_, c)| **c != memory.rows) {
+            return Err(SinkError(format!(
+                "{} holds {count} messages on {topic} before the checkpoint, where the checkpoint counts {} rows: \
+                 it is not this run's log up to its checkpoint",
+                continuation.previous.display(),
+                memory.rows
+            )));
+        }
+        if let Err(e) = writer.flush() {
+            return Err(self.abandon("cannot write", e));
+        }
+        continuation.commit()?;
+        self.path = continuation.target.clone();
+        Ok(())
     }
 
     fn write(&mut self, topic: &'static str, time: f64, data: &[u8]) -> Result<(), SinkError> {
@@ -180,6 +230,35 @@ impl Sink for McapSink {
 
     fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
         if self.decimator.keep(frame) { self.write_row(frame) } else { Ok(()) }
+    }
+
+    fn checkpoint(&mut self) -> Result<SinkMemory, SinkError> {
+        let Some(writer) = self.writer.as_mut() else {
+            return Err(SinkError(format!("{} was abandoned after an earlier write error", self.path.display())));
+        };
+        if let Err(e) = writer.flush() {
+            return Err(self.abandon("cannot write", e));
+        }
+        sync(&self.path)?;
+        Ok(SinkMemory::Log(LogMemory {
+            rows: self.rows,
+            sequence: self.sequence,
+            last_time: self.last_time,
+            decimator: self.decimator.memory(),
+        }))
+    }
+
+    fn resume(&mut self, saved: &[SinkMemory]) -> Result<(), SinkError> {
+        let Some(memory) = saved.iter().find_map(|m| match m {
+            SinkMemory::Log(memory) => Some(memory),
+            _ => None,
+        }) else {
+            return Err(SinkError("the checkpoint's run wrote no MCAP log to continue".into()));
+        };
+        self.continue_log(memory)?;
+        (self.rows, self.sequence, self.last_time) = (memory.rows, memory.sequence, memory.last_time);
+        self.decimator.resume(memory.decimator);
+        Ok(())
     }
 
     fn finish(&mut self, ending: Ending, last: Option<&Frame>, catalog: &Catalog) -> Result<(), SinkError> {

@@ -7,6 +7,7 @@ pub mod cadence;
 pub mod catalog;
 pub mod geometry;
 pub mod mcap;
+pub mod memory;
 pub mod properties;
 pub mod rerun;
 pub mod series;
@@ -15,9 +16,11 @@ pub mod spacetime;
 pub mod viewer;
 
 use std::fmt;
+use std::path::PathBuf;
 
 use crate::catalog::events::Catalog;
 use crate::frame::{Ending, Frame, Layout, Needs};
+pub use crate::sink::memory::SinkMemory;
 
 /// A sink could not write.
 #[derive(Debug, Clone, PartialEq)]
@@ -42,8 +45,45 @@ pub trait Sink {
     fn begin(&mut self, layout: &Layout) -> Result<(), SinkError>;
     /// Called for the initial frame and after every step.
     fn record(&mut self, frame: &Frame) -> Result<(), SinkError>;
+    /// Hands everything buffered to the disk and returns what the sink must remember to
+    /// continue after a checkpoint taken now ([`SinkMemory`]).
+    fn checkpoint(&mut self) -> Result<SinkMemory, SinkError> {
+        Ok(SinkMemory::Nothing)
+    }
+    /// Continues from a checkpoint: called after [`Sink::begin`], in place of the initial
+    /// frame, with what every sink's [`Sink::checkpoint`] returned (each takes its own kind).
+    fn resume(&mut self, _saved: &[SinkMemory]) -> Result<(), SinkError> {
+        Ok(())
+    }
     /// Called once at the end, however the run ended, with the last frame recorded (the last
     /// good step; a decimating sink records it if it skipped it) and the catalog of every slip
     /// event up to it.
     fn finish(&mut self, ending: Ending, last: Option<&Frame>, catalog: &Catalog) -> Result<(), SinkError>;
+}
+
+/// Where a resumed run's file sink finds the file it continues, and where it writes: the
+/// continued file is written beside its `target` as `writing`, starting with the part of
+/// `previous` up to the checkpoint, and renamed to `target` once that part is on the disk, so
+/// that `target` always holds a whole run up to some step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Continuation {
+    pub previous: PathBuf,
+    pub writing: PathBuf,
+    pub target: PathBuf,
+}
+
+impl Continuation {
+    /// Renames `writing` to `target`.
+    pub fn commit(&self) -> Result<(), SinkError> {
+        std::fs::rename(&self.writing, &self.target).map_err(|e| {
+            SinkError(format!("cannot rename {} to {}: {e}", self.writing.display(), self.target.display()))
+        })
+    }
+}
+
+/// Forces what was written to `path` (through any handle) onto the disk.
+pub fn sync(path: &std::path::Path) -> Result<(), SinkError> {
+    std::fs::File::open(path)
+        .and_then(|file| file.sync_data())
+        .map_err(|e| SinkError(format!("cannot sync {}: {e}", path.display())))
 }

@@ -20,11 +20,12 @@ use crate::record::schema::{
 use crate::sink::blueprint::{self, Contents};
 use crate::sink::cadence::Cadence;
 use crate::sink::geometry::{self, GeometryBuffer};
+use crate::sink::memory::RecordingMemory;
 use crate::sink::series::SeriesColumns;
 use crate::sink::slip_front::SlipFront;
 use crate::sink::spacetime::SpaceTime;
 use crate::sink::viewer::DetachedViewer;
-use crate::sink::{Sink, SinkError, properties};
+use crate::sink::{Continuation, Sink, SinkError, SinkMemory, properties, sync};
 
 /// Geometry points buffered before every buffer is sent (large meshes flush sooner).
 const GEOMETRY_POINTS_PER_CHUNK: usize = 2_000_000;
@@ -50,6 +51,12 @@ pub struct RerunSink {
     last_time: f64,
     spacetime: Option<SpaceTime>,
     needs: Needs,
+    /// The step of the last frame seen.
+    seen: u64,
+    /// The file the stream writes, synced at each checkpoint.
+    file: Option<std::path::PathBuf>,
+    /// The recording this one continues, for a resumed run.
+    continuation: Option<Continuation>,
 }
 
 impl RerunSink {
@@ -79,7 +86,51 @@ impl RerunSink {
             last_time: 0.0,
             spacetime: None,
             needs,
+            seen: 0,
+            file: None,
+            continuation: None,
         }
+    }
+
+    /// The same sink, told the file its stream writes (synced at each checkpoint).
+    pub fn with_file(mut self, path: &std::path::Path) -> Self {
+        self.file = Some(path.to_path_buf());
+        self
+    }
+
+    /// The same sink continuing the recording of an interrupted run ([`Continuation`]).
+    pub fn continuing(mut self, continuation: Continuation) -> Self {
+        self.continuation = Some(continuation);
+        self
+    }
+
+    /// Copies the continued recording's rows up to the checkpoint into this one, checks that
+    /// they are all there, continues the series' digests over them, and renames the file to
+    /// its target.
+    fn continue_recording(&mut self, memory: &RecordingMemory) -> Result<(), SinkError> {
+        let Some(continuation) = self.continuation.clone() else { return Ok(()) };
+        let id = self.plan.recording_id.clone().unwrap_or_default();
+        let through = memory.through as i64;
+        let rec = self.rec.as_ref().expect("the stream lives until finish");
+        let rows =
+            crate::record::continuation::copy_recording(&continuation.previous, rec, &id, through, &[schema::EVENTS])
+                .map_err(SinkError)?;
+        let first = self.series.first_path().unwrap_or_default();
+        let found = rows.iter().find(|(entity, _)| entity.trim_start_matches('/') == first).map_or(0, |(_, r)| *r);
+        if found as u64 != memory.rows {
+            return Err(SinkError(format!(
+                "{} holds {found} recorded rows up to step {through}, where the checkpoint counts {}: it is not this \
+                 run's recording up to its checkpoint",
+                continuation.previous.display(),
+                memory.rows
+            )));
+        }
+        let recorded = crate::inspect::rrd::read(&continuation.previous).map_err(|e| SinkError(e.0))?;
+        self.series.resume_digests(&recorded.series, through).map_err(SinkError)?;
+        flush(self.rec())?;
+        continuation.commit()?;
+        self.file = Some(continuation.target.clone());
+        Ok(())
     }
 
     fn rec(&self) -> &RecordingStream {
@@ -242,7 +293,45 @@ impl Sink for RerunSink {
     }
 
     fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
+        self.seen = frame.step;
         if self.decimator.keep(frame) { self.write_row(frame, false) } else { Ok(()) }
+    }
+
+    fn checkpoint(&mut self) -> Result<SinkMemory, SinkError> {
+        self.flush_columns()?;
+        flush(self.rec())?;
+        if let Some(file) = &self.file {
+            sync(file)?;
+        }
+        Ok(SinkMemory::Recording(RecordingMemory {
+            through: self.seen,
+            rows: self.rows,
+            last_time: self.last_time,
+            decimator: self.decimator.memory(),
+            views: self.views.memory(),
+            slip_front: self.slip_front.as_ref().and_then(SlipFront::memory),
+            spacetime: self.spacetime.as_ref().map(SpaceTime::memory),
+        }))
+    }
+
+    fn resume(&mut self, saved: &[SinkMemory]) -> Result<(), SinkError> {
+        let Some(memory) = saved.iter().find_map(|m| match m {
+            SinkMemory::Recording(memory) => Some(memory),
+            _ => None,
+        }) else {
+            return Err(SinkError("the checkpoint's run wrote no recording to continue".into()));
+        };
+        self.continue_recording(memory)?;
+        (self.seen, self.rows, self.last_time) = (memory.through, memory.rows, memory.last_time);
+        self.decimator.resume(memory.decimator);
+        self.views.resume(memory.views.clone());
+        if let Some(front) = &mut self.slip_front {
+            front.resume(memory.slip_front.clone());
+        }
+        if let (Some(map), Some(saved)) = (&mut self.spacetime, &memory.spacetime) {
+            map.resume(saved.clone(), self.plan.t_end).map_err(SinkError)?;
+        }
+        Ok(())
     }
 
     fn finish(&mut self, ending: Ending, last: Option<&Frame>, catalog: &Catalog) -> Result<(), SinkError> {

@@ -85,6 +85,30 @@ impl SeriesColumns {
         Ok(())
     }
 
+    /// Continues every series' digest over the rows of `recorded` (a reader's series, by the
+    /// name it gives them) up to step `through`: the rows a resumed run's recording starts with.
+    pub fn resume_digests(
+        &mut self,
+        recorded: &BTreeMap<String, crate::inspect::Series>,
+        through: i64,
+    ) -> Result<(), String> {
+        for entity in &mut self.entities {
+            for (name, digest) in entity.names.iter().zip(&mut entity.digests) {
+                let series = recorded.get(name).ok_or_else(|| format!("the recording has no series {name}"))?;
+                let rows = series.steps.iter().zip(&series.times).zip(&series.values);
+                for ((&step, &time), &value) in rows.take_while(|((step, _), _)| **step <= through) {
+                    digest.add(step, time, value);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The path of the first entity, if any.
+    pub fn first_path(&self) -> Option<&str> {
+        self.entities.first().map(|e| e.path.as_str())
+    }
+
     /// The digest of every series written so far, by the name a reader gives it.
     pub fn digests(&self) -> BTreeMap<String, String> {
         self.entities

@@ -122,6 +122,16 @@ impl SlipFront {
         }
     }
 
+    /// Which lanes slipped at the last recorded frame, for a checkpoint.
+    pub fn memory(&self) -> Option<Vec<bool>> {
+        self.last_state.clone()
+    }
+
+    /// Continues from [`Self::memory`].
+    pub fn resume(&mut self, last_state: Option<Vec<bool>>) {
+        self.last_state = last_state;
+    }
+
     /// Adds a view frame's profiles.
     pub fn push_profiles(&mut self, frame: &Frame) {
         if !self.profiles {

@@ -26,25 +26,85 @@ pub fn map_height(segments: usize) -> usize {
 
 /// The peak slip rate per (segment, time bin) of the recorded steps.
 pub struct SpaceTime {
-    t_end: f64,
+    /// The span whose [`TIME_BINS`] bins the map has: `t_end`, or the first `t_end` of a run
+    /// that was extended, whose map then has as many more bins of the same width as it needs.
+    t_span: f64,
+    /// Time bins (columns).
+    bins: usize,
     segments: usize,
-    /// Row-major: a row of `TIME_BINS` per segment.
+    /// Row-major: a row of `bins` per segment.
     peaks: Vec<f32>,
+}
+
+/// The space-time map as a checkpoint keeps it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct SpaceTimeMemory {
+    pub t_span: f64,
+    pub bins: usize,
+    pub segments: usize,
+    pub peaks: Vec<f32>,
+}
+
+/// The most multiples of its bins' first span a map grows to before its bins widen.
+const MOST_SPANS: usize = 4;
+
+impl SpaceTimeMemory {
+    /// The same map in bins twice as wide.
+    fn coarsened(&self) -> Self {
+        let bins = self.bins.div_ceil(2);
+        let peaks = self
+            .peaks
+            .chunks(self.bins)
+            .flat_map(|row| row.chunks(2).map(|pair| pair.iter().fold(0.0_f32, |m, v| m.max(*v))).collect::<Vec<_>>())
+            .collect();
+        Self { t_span: 2.0 * self.t_span, bins, segments: self.segments, peaks }
+    }
 }
 
 impl SpaceTime {
     pub fn new(t_end: f64, segments: usize) -> Self {
-        Self { t_end, segments, peaks: vec![0.0; TIME_BINS * segments] }
+        Self { t_span: t_end, bins: TIME_BINS, segments, peaks: vec![0.0; TIME_BINS * segments] }
     }
 
     /// Adds a recorded step's slip rates (recorded steps only, so that a replayed log draws
     /// the same map).
     pub fn push(&mut self, time: f64, rates: impl Iterator<Item = f64>) {
-        let bin = ((time / self.t_end * TIME_BINS as f64) as usize).min(TIME_BINS - 1);
+        let bin = ((time / self.t_span * TIME_BINS as f64) as usize).min(self.bins - 1);
         for (k, rate) in rates.take(self.segments).enumerate() {
-            let cell = &mut self.peaks[k * TIME_BINS + bin];
+            let cell = &mut self.peaks[k * self.bins + bin];
             *cell = cell.max(rate as f32);
         }
+    }
+
+    /// The map so far, for a checkpoint.
+    pub fn memory(&self) -> SpaceTimeMemory {
+        SpaceTimeMemory { t_span: self.t_span, bins: self.bins, segments: self.segments, peaks: self.peaks.clone() }
+    }
+
+    /// Continues the saved map up to `t_end`: its bins as they were, and more of the same width
+    /// if `t_end` lies beyond them.
+    pub fn resume(&mut self, saved: SpaceTimeMemory, t_end: f64) -> Result<(), String> {
+        let fits = saved.segments == self.segments
+            && saved.bins >= 1
+            && saved.peaks.len() == saved.bins * saved.segments
+            && saved.t_span.is_finite()
+            && saved.t_span > 0.0;
+        if !fits {
+            return Err("the checkpoint's space-time map does not fit this run".into());
+        }
+        let mut saved = saved;
+        // A run extended far beyond its first span gets wider bins, each the peak of two.
+        while t_end / saved.t_span > MOST_SPANS as f64 && saved.bins > 1 {
+            saved = saved.coarsened();
+        }
+        let needed = (t_end / saved.t_span * TIME_BINS as f64).ceil().min((MOST_SPANS * TIME_BINS) as f64);
+        let bins = if needed.is_finite() { saved.bins.max(needed as usize) } else { saved.bins };
+        let mut peaks = vec![0.0; bins * self.segments];
+        for (row, saved_row) in peaks.chunks_mut(bins).zip(saved.peaks.chunks(saved.bins)) {
+            row[..saved.bins].copy_from_slice(saved_row);
+        }
+        (self.t_span, self.bins, self.peaks) = (saved.t_span, bins, peaks);
+        Ok(())
     }
 
     /// Logs the map and its tick labels (static): `log10` of the peak slip rate (m/s), from a
@@ -60,7 +120,7 @@ impl SpaceTime {
             .flat_map(f32::to_le_bytes)
             .collect();
         let format = rerun::components::ImageFormat::depth(
-            [TIME_BINS as u32, self.segments as u32],
+            [self.bins as u32, self.segments as u32],
             rerun::datatypes::ChannelDatatype::F32,
         );
         rec.log_static(
@@ -89,8 +149,9 @@ impl SpaceTime {
         let height = map_height(self.segments) as f64;
         let mut positions = Vec::new();
         let mut labels = Vec::new();
-        for t in ticks_over(self.t_end, 10.0) {
-            positions.push([(t / self.t_end * TIME_BINS as f64) as f32, (height + 15.0) as f32]);
+        let t_end = self.t_span * self.bins as f64 / TIME_BINS as f64;
+        for t in ticks_over(t_end, 10.0) {
+            positions.push([(t / self.t_span * TIME_BINS as f64) as f32, (height + 15.0) as f32]);
             labels.push(format!("{} s", shortest(t)));
         }
         for x in ticks_over(width_m, 5.0) {

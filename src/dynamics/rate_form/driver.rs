@@ -6,6 +6,8 @@
 use crate::dynamics::control::{AdaptiveError, ErrorScaling, StepControl};
 use crate::dynamics::error::StepError;
 use crate::dynamics::integrator::{Integrator, Statistics};
+use crate::dynamics::memory::{IntegratorMemory, mismatch};
+use crate::dynamics::rate_form::memory::{Pair, RungeKutta};
 use crate::dynamics::rate_form::sdirk4::{FOURTH_ORDER, Sdirk4};
 use crate::dynamics::rate_form::tsit5::{FIFTH_ORDER, Tsit5};
 use crate::dynamics::system::System;
@@ -21,28 +23,6 @@ pub enum Tableau {
 
 /// Root-finding steps allowed when locating a crossing.
 const MAX_LOCATING_STEPS: usize = 60;
-
-/// The integrator's memory between steps: the state as one vector, its rate (the next step's
-/// first stage), and every point's `Λ` there.
-#[derive(Debug, Clone)]
-pub struct RungeKutta {
-    /// Step and time of the state `y` describes; another means [`System::state`] was changed
-    /// from outside, and `y` is rebuilt.
-    at: (u64, f64),
-    y: Vec<f64>,
-    rate: Vec<f64>,
-    lambda: Vec<f64>,
-    /// Physical scale of each component, added to its size in the error measure.
-    scale: Vec<f64>,
-    pair: Pair,
-}
-
-/// A method with its workspace.
-#[derive(Debug, Clone)]
-enum Pair {
-    Tsit5(Tsit5),
-    Sdirk4(Box<Sdirk4>),
-}
 
 impl Pair {
     fn scaling(&self) -> ErrorScaling {
@@ -94,6 +74,29 @@ impl Integrator for RateForm {
         }
         self.memory = Some(rk);
         result
+    }
+
+    fn memory(&self) -> IntegratorMemory {
+        IntegratorMemory::RateForm {
+            control: self.control.clone(),
+            memory: self.memory.clone().map(Box::new),
+            statistics: self.statistics,
+        }
+    }
+
+    /// Takes back the state vector, its rate (the first stage of the next step), the method's
+    /// linearization, the counts and the next step; the step limits stay the case's.
+    fn restore(&mut self, system: &System, memory: IntegratorMemory) -> Result<(), String> {
+        let IntegratorMemory::RateForm { control, memory, statistics } = memory else {
+            return Err(mismatch(format!("saved by {}, the case steps with a Runge–Kutta method", memory.name())));
+        };
+        if let Some(rk) = &memory {
+            rk.fits(system, self.tableau)?;
+        }
+        self.control.resume_from(&control)?;
+        self.memory = memory.map(|rk| *rk);
+        self.statistics = statistics;
+        Ok(())
     }
 
     fn statistics(&self) -> Statistics {
@@ -212,6 +215,24 @@ impl RungeKutta {
             Tableau::Sdirk4 => Pair::Sdirk4(Box::new(Sdirk4::new(len, m))),
         };
         Self { at: (s.step, s.time), y, rate, lambda, scale, pair }
+    }
+
+    /// Whether this memory, saved in a checkpoint, fits `dynamics` stepped by `tableau`.
+    fn fits(&self, dynamics: &System, tableau: Tableau) -> Result<(), String> {
+        let m = dynamics.contact.points.len();
+        let len = 2 * dynamics.body.dofs() + 3 * m;
+        let sized =
+            [self.y.len(), self.rate.len(), self.scale.len()].iter().all(|&l| l == len) && self.lambda.len() == m;
+        let pair = match (&self.pair, tableau) {
+            (Pair::Tsit5(pair), Tableau::Tsit5) => pair.fits(len),
+            (Pair::Sdirk4(pair), Tableau::Sdirk4) => pair.fits(len, m),
+            _ => return Err(mismatch("saved by the other Runge–Kutta method")),
+        };
+        if sized && pair {
+            Ok(())
+        } else {
+            Err(mismatch(format!("its state vector is not the {len} unknowns of this case's rate form")))
+        }
     }
 
     /// One step of `h` from the current state at `t`; `tolerance` is the error allowed per step.

@@ -39,6 +39,7 @@
 //! steps from the step's start), so that a frame lies on every onset and every end.
 
 pub mod driver;
+pub mod memory;
 pub mod sdirk4;
 pub mod tsit5;
 

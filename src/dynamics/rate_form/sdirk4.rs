@@ -73,7 +73,7 @@ const SLOW: f64 = 0.5;
 
 /// One contact point's part of `I - hγJ`: its rates of `(f_t, 1/R*)` depend on themselves
 /// (`L`, 2 × 2) and on the relative sliding velocity `v̄_t` (`b`); `Λ = ṗ` on all three.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, serde::Serialize, serde::Deserialize)]
 struct PointLinearization {
     /// `(I - hγ L)⁻¹`.
     inverse: [[f64; 2]; 2],
@@ -110,7 +110,7 @@ impl PointLinearization {
 }
 
 /// The method's stages and workspace on `ẏ = f(t, y)` of one [`System`].
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct Sdirk4 {
     stages: [Vec<f64>; 5],
     /// The stage iterate; after a step, the solution `y_{n+1}`.
@@ -144,6 +144,14 @@ impl Sdirk4 {
             linearizations: 0,
             iterations: 0,
         }
+    }
+
+    /// Whether the workspace is for `len` unknowns and `points` contact points.
+    pub(super) fn fits(&self, len: usize, points: usize) -> bool {
+        let vectors = [&self.work, &self.known, &self.correction, &self.rate];
+        vectors.iter().chain(self.stages.iter().collect::<Vec<_>>().iter()).all(|v| v.len() == len)
+            && self.lambda.len() == points
+            && self.points.len() == points
     }
 
     /// One step of `h` from `y` at `t`, whose rate is `rate`. Returns the filtered error

@@ -94,7 +94,7 @@ fn fifth_root(x: f64) -> f64 {
 }
 
 /// Tsitouras' 5(4) pair on `ẏ = f(t, y)`: its stages and one step.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct Tsit5 {
     stages: [Vec<f64>; 7],
     work: Vec<f64>,
@@ -104,6 +104,11 @@ impl Tsit5 {
     /// Workspace for systems of `len` unknowns.
     pub fn new(len: usize) -> Self {
         Self { stages: std::array::from_fn(|_| vec![0.0; len]), work: vec![0.0; len] }
+    }
+
+    /// Whether the workspace is for `len` unknowns.
+    pub(super) fn fits(&self, len: usize) -> bool {
+        self.work.len() == len && self.stages.iter().all(|stage| stage.len() == len)
     }
 
     /// One step of `h` from `y` at `t`, whose rate `f(t, y)` is `rate`; `f(t, y, ẏ)` fills

@@ -1,0 +1,42 @@
+//! What each sink remembers across a checkpoint ([`crate::sink::Sink::checkpoint`]), as data.
+
+use serde::{Deserialize, Serialize};
+
+use crate::sink::spacetime::SpaceTimeMemory;
+
+/// What a sink remembers across a checkpoint.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum SinkMemory {
+    /// Nothing: the sink writes its file from the catalog at the end (the catalog CSVs).
+    Nothing,
+    /// The Rerun recording's ([`RecordingMemory`]).
+    Recording(RecordingMemory),
+    /// The MCAP log's ([`LogMemory`]).
+    Log(LogMemory),
+}
+
+/// What the Rerun sink remembers across a checkpoint: the step it was taken at (the
+/// recording holds every row up to it), the rows and last time recorded, the decimators'
+/// memories, the slip front's last state and the space-time map so far. The series' digests
+/// are recomputed from the rows the continued recording starts with.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RecordingMemory {
+    pub through: u64,
+    pub rows: u64,
+    pub last_time: f64,
+    pub decimator: Option<u64>,
+    pub views: (Option<(u64, f64)>, Vec<bool>),
+    pub slip_front: Option<Vec<bool>>,
+    pub spacetime: Option<SpaceTimeMemory>,
+}
+
+/// What the MCAP sink remembers across a checkpoint: the rows written (the log holds them
+/// all), the last message's sequence number, the last time recorded, and the decimator's
+/// memory.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LogMemory {
+    pub rows: u64,
+    pub sequence: u32,
+    pub last_time: f64,
+    pub decimator: Option<u64>,
+}
