@@ -42,6 +42,12 @@ pub fn command(args: FiguresArgs) -> ExitCode {
                 None => ExitCode::SUCCESS,
             }
         }
-        Err(e) => fail(EXIT_FAILED, e),
+        // Nothing to draw: the damage, if any, is why.
+        Err(e) => match &recording.problem {
+            Some(problem) => {
+                fail(EXIT_FAILED, format!("{} is damaged ({problem}): {e}; no figures drawn", args.recording.display()))
+            }
+            None => fail(EXIT_FAILED, e),
+        },
     }
 }

@@ -9,6 +9,8 @@
 //! holds (or, for a compressed MCAP chunk, more than [`MAX_CHUNK_BYTES`]), and say where they
 //! stopped; everything before it is kept, as for any other damage.
 
+use crate::inspect::arrow_message;
+
 /// The largest uncompressed MCAP chunk believed (1 GiB). slipfront writes chunks of under 1 MiB;
 /// other writers default to a few MiB.
 pub const MAX_CHUNK_BYTES: u64 = 1 << 30;
@@ -97,6 +99,14 @@ pub fn rrd(input: &mut impl ReadAt, total: u64) -> Plausible {
                     )),
                 };
             }
+            if kind == ARROW_MSG
+                && let Some(problem) = arrow_problem(input, pos + 16, len)
+            {
+                return Plausible {
+                    len: pos,
+                    problem: Some(format!("the message at byte {pos}: {problem}; read up to it")),
+                };
+            }
             pos += 16 + len;
             if kind == 0 {
                 pos += 32;
@@ -104,6 +114,19 @@ pub fn rrd(input: &mut impl ReadAt, total: u64) -> Plausible {
             }
         }
     }
+}
+
+/// The RRD message kind of an `ArrowMsg`.
+const ARROW_MSG: u64 = 2;
+
+/// What is wrong inside the `ArrowMsg` of `len` bytes at `pos` ([`arrow_message::problem`]);
+/// `len` was checked against the input's size, so reading it allocates no more than the file.
+fn arrow_problem(input: &mut impl ReadAt, pos: u64, len: u64) -> Option<String> {
+    let mut message = vec![0u8; usize::try_from(len).ok()?];
+    if !input.read_at(pos, &mut message) {
+        return None;
+    }
+    arrow_message::problem(&message)
 }
 
 /// MCAP framing: the 8-byte magic, then records of an opcode byte, a little-endian u64 length

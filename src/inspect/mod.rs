@@ -1,5 +1,6 @@
 //! Reading recordings back and checking them (`slipfront check`).
 
+pub mod arrow_message;
 pub mod check;
 pub mod framing;
 pub mod mcap;
