@@ -5,7 +5,7 @@
 //! protobuf's `uncompressed_size` (`re_log_encoding` 0.36 resizes a buffer to it), and each IPC
 //! message's `bodyLength` (`arrow-ipc` 58 allocates it zeroed). A damaged file that claims
 //! exabytes in either aborts the process, which no panic handler catches (fuzzing found the
-//! second: `fuzz/regressions/rrd_check/`). This walks the same structure with every length
+//! second: `fuzz/regressions/rrd_read/crash-90d08cdc…`). This walks the same structure with every length
 //! checked against what follows it, so that the reader stops before such a message.
 
 use rerun::external::arrow::ipc::{self, MessageHeader};
