@@ -9,7 +9,7 @@ use clap::Args;
 use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, fail, print};
 use crate::cli::isolated;
 use crate::inspect;
-use crate::inspect::check::{Expectations, check};
+use crate::inspect::check::{Expectations, Report, check, check_partial};
 use crate::study::replay;
 
 #[derive(Debug, Args)]
@@ -20,6 +20,12 @@ pub struct CheckArgs {
     /// `[[at]] entity = "...", time = t, min = a, max = b` (the last row at or before t).
     #[arg(long, value_name = "EXPECT.toml")]
     pub expect: Option<PathBuf>,
+    /// Judge a file that may end early (a run killed, or stopped by a full disk, before it
+    /// wrote its ending or footer): where the reading stopped is reported rather than failed,
+    /// everything read is judged, and the summary says how far it reaches. What only a run's
+    /// end writes (the ending record, the space-time map) is asked for only if the file has it.
+    #[arg(long)]
+    pub partial: bool,
 }
 
 /// Runs `slipfront check`.
@@ -41,10 +47,15 @@ pub fn command(args: CheckArgs) -> ExitCode {
             Ok(r) => r,
             Err(e) => return fail(EXIT_INVALID, e),
         };
-        let mut report = check(&recording, &expect);
+        let mut report = judge(&recording, &expect, args.partial);
         report.summary.insert(0, format!("MCAP log: {} messages, {} recorded steps", log.messages, log.frames.len()));
-        if let Some(problem) = &log.problem {
-            report.problems.insert(0, format!("the log is damaged: {problem}"));
+        match &log.problem {
+            // Where a log that may end early stops is reported; what it holds is judged.
+            Some(problem) if args.partial => {
+                report.summary.insert(1, format!("the log ends early: {problem}"));
+            }
+            Some(problem) => report.problems.insert(0, format!("the log is damaged: {problem}")),
+            None => {}
         }
         if !log.skipped.is_empty() {
             report.summary.push(format!("skipped channels of other producers: {:?}", log.skipped));
@@ -52,14 +63,14 @@ pub fn command(args: CheckArgs) -> ExitCode {
         report
     } else {
         if let Some(failure) = isolated::decoder_failure(&args.recording) {
-            let report = inspect::check::Report { problems: vec![failure], ..Default::default() };
+            let report = Report { problems: vec![failure], ..Default::default() };
             return match print(&report.render()) {
                 Ok(()) => ExitCode::from(EXIT_FAILED),
                 Err(exit) => exit,
             };
         }
         match inspect::rrd::read(&args.recording) {
-            Ok(recording) => check(&recording, &expect),
+            Ok(recording) => judge(&recording, &expect, args.partial),
             Err(e) => return fail(EXIT_INVALID, e),
         }
     };
@@ -67,6 +78,11 @@ pub fn command(args: CheckArgs) -> ExitCode {
         return exit;
     }
     if report.passed() { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED) }
+}
+
+/// [`check`], or with `partial` [`check_partial`].
+fn judge(recording: &inspect::Recording, expect: &Expectations, partial: bool) -> Report {
+    if partial { check_partial(recording, expect) } else { check(recording, expect) }
 }
 
 /// Whether `path` is an MCAP log: named `.mcap`, or starting with the MCAP magic bytes.

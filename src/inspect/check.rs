@@ -137,18 +137,43 @@ impl Report {
 
 /// Checks `recording` against its own description and `expect`.
 pub fn check(recording: &Recording, expect: &Expectations) -> Report {
+    judge(recording, expect, false)
+}
+
+/// As [`check`], for a file that may end early (a run killed, or stopped by a full disk, before
+/// it wrote its ending or its footer): where the reading stopped is reported, not failed, and
+/// what was read is judged; a file with its ending record in full, one without on everything
+/// it holds (run description, time axis from 0 and rising, one row per
+/// step, the same steps in every series, finite values, blueprint), and what only the end of a
+/// run writes (the ending record, the last time, the space-time map) is not asked for. The
+/// summary says how far it reaches.
+pub fn check_partial(recording: &Recording, expect: &Expectations) -> Report {
+    judge(recording, expect, true)
+}
+
+/// Whether a file is judged as one that may end before its run's ending record.
+pub fn ends_early(recording: &Recording, partial: bool) -> bool {
+    partial && !recording.static_texts.contains_key(schema::RUN_ENDING)
+}
+
+fn judge(recording: &Recording, expect: &Expectations, partial: bool) -> Report {
     let mut report = Report::default();
+    let early = ends_early(recording, partial);
     if let Some(problem) = &recording.problem {
-        report.problems.push(format!("the file is damaged: {problem}"));
+        if partial {
+            report.summary.push(format!("the file ends early: {problem}"));
+        } else {
+            report.problems.push(format!("the file is damaged: {problem}"));
+        }
     }
-    let Some((info, ending)) = describe(recording, &mut report) else { return report };
-    let reference = check_series(recording, &info, &mut report);
+    let Some((info, ending)) = describe(recording, &mut report, early) else { return report };
+    let reference = check_series(recording, &info, early, &mut report);
     match reference {
-        Some((path, series)) => check_time_axis(path, series, &info, ending.as_ref(), &mut report),
+        Some((path, series)) => check_time_axis(path, series, &info, ending.as_ref(), early, &mut report),
         None if !info.series.is_empty() => report.problems.push("none of the listed series is present".into()),
         None => {}
     }
-    check_spatial(recording, &info, &mut report);
+    check_spatial(recording, &info, early, &mut report);
     if let Some(e) = &ending {
         check_digests(recording, e, &mut report);
         check_events(recording, &info, e, expect, &mut report);
@@ -160,7 +185,7 @@ pub fn check(recording: &Recording, expect: &Expectations) -> Report {
 
 /// The run description and ending record, summarized; `None` (with the problem) where the
 /// description is missing or unreadable.
-fn describe(recording: &Recording, report: &mut Report) -> Option<(RunInfo, Option<RunEnding>)> {
+fn describe(recording: &Recording, report: &mut Report, early: bool) -> Option<(RunInfo, Option<RunEnding>)> {
     let Some(info_text) = recording.static_texts.get(schema::RUN_INFO) else {
         report.problems.push(format!(
             "no run description at {}: not a slipfront recording, or cut off at its start",
@@ -196,8 +221,13 @@ fn describe(recording: &Recording, report: &mut Report) -> Option<(RunInfo, Opti
         info.stepping()
     ));
     match &ending {
+        None if early => report.summary.push(format!(
+            "no ending record at {}: the run did not finish writing this file; judged up to its last row (--partial)",
+            schema::RUN_ENDING
+        )),
         None => report.problems.push(format!(
-            "no ending record at {}: the recording stops before the run finished writing it (truncated?)",
+            "no ending record at {}: the recording stops before the run finished writing it (truncated? \
+             `check --partial` judges what it holds)",
             schema::RUN_ENDING
         )),
         Some(e) => report.summary.push(format!(
@@ -209,39 +239,57 @@ fn describe(recording: &Recording, report: &mut Report) -> Option<(RunInfo, Opti
 }
 
 /// Every listed series present, with the same rows and finite values; returns the first
-/// present one, the reference for the time axis.
-fn check_series<'r>(recording: &'r Recording, info: &'r RunInfo, report: &mut Report) -> Option<(&'r str, &'r Series)> {
-    let problems = &mut report.problems;
-    let mut reference: Option<(&str, &Series)> = None;
-    let mut non_finite = 0usize;
-    for path in &info.series {
-        let Some(series) = recording.series.get(path) else {
-            problems.push(format!("missing series {path}"));
-            continue;
-        };
-        if let Some((first, s)) = reference {
-            if s.steps != series.steps {
-                problems.push(format!(
+/// present one, the reference for the time axis. In a file that ends early ([`check_partial`])
+/// the series need not all reach its end, since each is its own entity and a cut can fall
+/// between them: the reference is the longest, every other must hold its first rows exactly,
+/// and the summary says how far all of them reach.
+fn check_series<'r>(
+    recording: &'r Recording,
+    info: &'r RunInfo,
+    early: bool,
+    report: &mut Report,
+) -> Option<(&'r str, &'r Series)> {
+    let present: Vec<(&str, &Series)> =
+        info.series.iter().filter_map(|path| recording.series.get(path).map(|s| (path.as_str(), s))).collect();
+    let reference =
+        if early { present.iter().copied().max_by_key(|(_, s)| s.steps.len()) } else { present.first().copied() };
+    let missing = info.series.iter().filter(|path| !recording.series.contains_key(*path));
+    if early {
+        let missing = missing.count();
+        if missing > 0 {
+            report.summary.push(format!("{missing} series hold no rows: the file ends before their first rows"));
+        }
+    } else {
+        report.problems.extend(missing.map(|path| format!("missing series {path}")));
+    }
+    if let Some((first, s)) = reference {
+        for (path, series) in present.iter().filter(|(path, _)| *path != first) {
+            let same = if early { s.steps.starts_with(&series.steps) } else { s.steps == series.steps };
+            if !same {
+                report.problems.push(format!(
                     "{path} has {} rows at other steps than {first} ({} rows)",
                     series.steps.len(),
                     s.steps.len()
                 ));
             }
-        } else {
-            reference = Some((path.as_str(), series));
         }
-        if let Some(i) = series.values.iter().position(|v| !v.is_finite()) {
-            non_finite += 1;
-            if non_finite <= 5 {
-                problems.push(format!(
-                    "{path} = {} at step {} (t = {} s)",
-                    series.values[i], series.steps[i], series.times[i]
-                ));
-            }
+        if early && let Some((path, shortest)) = present.iter().min_by_key(|(_, s)| s.steps.len()) {
+            let reach = shortest.times.last().map_or("no row".into(), |t| format!("t = {t} s"));
+            report
+                .summary
+                .push(format!("every series present reaches {reach} ({path}, {} rows)", shortest.steps.len()));
         }
     }
-    if non_finite > 5 {
-        problems.push(format!("{} more series hold NaN or infinite values", non_finite - 5));
+    let non_finite: Vec<String> = present
+        .iter()
+        .filter_map(|(path, series)| {
+            let i = series.values.iter().position(|v| !v.is_finite())?;
+            Some(format!("{path} = {} at step {} (t = {} s)", series.values[i], series.steps[i], series.times[i]))
+        })
+        .collect();
+    report.problems.extend(non_finite.iter().take(5).cloned());
+    if non_finite.len() > 5 {
+        report.problems.push(format!("{} more series hold NaN or infinite values", non_finite.len() - 5));
     }
     reference
 }
@@ -267,7 +315,14 @@ fn check_digests(recording: &Recording, ending: &RunEnding, report: &mut Report)
 
 /// `sim_time` rising with the step from 0 to the run's end, one row per step, as many rows as
 /// the run reports.
-fn check_time_axis(path: &str, series: &Series, info: &RunInfo, ending: Option<&RunEnding>, report: &mut Report) {
+fn check_time_axis(
+    path: &str,
+    series: &Series,
+    info: &RunInfo,
+    ending: Option<&RunEnding>,
+    early: bool,
+    report: &mut Report,
+) {
     let problems = &mut report.problems;
     let rows = series.steps.len();
     report.summary.push(format!("{} series x {rows} rows", info.series.len()));
@@ -291,7 +346,10 @@ fn check_time_axis(path: &str, series: &Series, info: &RunInfo, ending: Option<&
         Some(e) if e.ending != "completed" => e.last_time,
         _ => info.t_end,
     };
-    if (last - expected_end).abs() > 1e-6 * expected_end.max(1.0) {
+    if early {
+        let step = series.steps.last().copied().unwrap_or_default();
+        report.summary.push(format!("readable up to t = {last} s (step {step}) of the run's {} s", info.t_end));
+    } else if (last - expected_end).abs() > 1e-6 * expected_end.max(1.0) {
         problems.push(format!("sim_time ends at {last} s, the run at {expected_end} s"));
     }
     if let Some(e) = ending
@@ -302,11 +360,14 @@ fn check_time_axis(path: &str, series: &Series, info: &RunInfo, ending: Option<&
     report.summary.push(format!("sim_time from {first} s to {last} s"));
 }
 
-/// The spatial views' entities, where the run recorded them.
-fn check_spatial(recording: &Recording, info: &RunInfo, report: &mut Report) {
+/// The spatial views' entities, where the run recorded them; the space-time map, drawn when
+/// the run ends, only in a file that reached its end.
+fn check_spatial(recording: &Recording, info: &RunInfo, early: bool, report: &mut Report) {
     if info.spatial {
-        let mut entities =
-            vec![schema::SPATIAL_CONTACT, schema::SPATIAL_MESH, schema::SPACETIME_IMAGE, schema::SPACETIME_NOW];
+        let mut entities = vec![schema::SPATIAL_CONTACT, schema::SPATIAL_MESH];
+        if !early {
+            entities.extend([schema::SPACETIME_IMAGE, schema::SPACETIME_NOW]);
+        }
         entities.push(schema::CONTACT_STATE);
         if info.kind == SceneKind::Block && info.segments > 1 {
             entities.push(schema::PROFILE_TRACTION);

@@ -9,6 +9,7 @@ pub mod geometry;
 pub mod mcap;
 pub mod memory;
 pub mod properties;
+pub mod recording_file;
 pub mod rerun;
 pub mod series;
 pub mod slip_front;

@@ -9,6 +9,7 @@
 //! steps go as one chunk), at least every second and every 512 rows ([`crate::sink::cadence`]).
 //! While no segment slips only every `stick_every`-th step is recorded.
 
+use rerun::sink::SinkFlushError;
 use rerun::{RecordingStream, TimeColumn};
 
 use crate::catalog::events::Catalog;
@@ -21,6 +22,7 @@ use crate::sink::blueprint::{self, Contents};
 use crate::sink::cadence::Cadence;
 use crate::sink::geometry::{self, GeometryBuffer};
 use crate::sink::memory::RecordingMemory;
+use crate::sink::recording_file::{FileFailure, RecordingFile};
 use crate::sink::series::SeriesColumns;
 use crate::sink::slip_front::SlipFront;
 use crate::sink::spacetime::SpaceTime;
@@ -55,13 +57,16 @@ pub struct RerunSink {
     seen: u64,
     /// The file the stream writes, synced at each checkpoint.
     file: Option<std::path::PathBuf>,
+    /// The first write error of the recording's file, set by its sink's thread.
+    file_failure: Option<FileFailure>,
     /// The recording this one continues, for a resumed run.
     continuation: Option<Continuation>,
 }
 
 impl RerunSink {
     /// A sink over an open recording stream.
-    pub fn new(rec: RecordingStream, plan: RecordingPlan) -> Self {
+    pub fn new(stream: Stream, plan: RecordingPlan) -> Self {
+        let Stream { rec, file_failure } = stream;
         rec.set_log_time_enabled(false);
         let needs = Needs {
             segment_state: plan.spec.quantities.iter().any(|q| q.needs_state()),
@@ -88,7 +93,16 @@ impl RerunSink {
             needs,
             seen: 0,
             file: None,
+            file_failure,
             continuation: None,
+        }
+    }
+
+    /// The recording file's first write error, if it had one ([`RecordingFile`]).
+    fn file_written(&self) -> Result<(), SinkError> {
+        match self.file_failure.as_ref().and_then(|failure| failure.get()) {
+            Some(error) => Err(SinkError(error.clone())),
+            None => Ok(()),
         }
     }
 
@@ -166,6 +180,8 @@ impl RerunSink {
             self.flush_columns()?;
             // Hand the file sink's buffer to the disk too, without waiting for a viewer.
             self.rec().flush_async().map_err(rerun_error)?;
+            // A write error of an earlier flush stops the run now, not at its end.
+            self.file_written()?;
         }
         Ok(())
     }
@@ -372,13 +388,15 @@ impl Sink for RerunSink {
 /// viewer that accepted the connection but stopped reading must not stall the run for ever.
 const FLUSH_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(20);
 
-/// Flushes `rec` within [`FLUSH_TIMEOUT`].
+/// Flushes `rec` within [`FLUSH_TIMEOUT`]; a sink that failed names its error (the file's is
+/// the operating system's, e.g. "No space left on device").
 fn flush(rec: &RecordingStream) -> Result<(), SinkError> {
-    rec.flush_with_timeout(FLUSH_TIMEOUT).map_err(|e| {
-        SinkError(format!(
-            "cannot flush the recording within {} s ({e}): is a connected viewer still reading?",
+    rec.flush_with_timeout(FLUSH_TIMEOUT).map_err(|e| match e {
+        SinkFlushError::Timeout => SinkError(format!(
+            "cannot flush the recording within {} s: is a connected viewer still reading?",
             FLUSH_TIMEOUT.as_secs()
-        ))
+        )),
+        SinkFlushError::Failed { message } => SinkError(message),
     })
 }
 
@@ -405,8 +423,8 @@ pub fn open_stream(
     viewer: &Viewer,
     name: &str,
     id: Option<&str>,
-) -> Result<Option<RecordingStream>, String> {
-    use rerun::sink::{FileSink, GrpcSink, LogSink};
+) -> Result<Option<Stream>, String> {
+    use rerun::sink::{GrpcSink, LogSink};
     let uri: Option<String> = match viewer {
         Viewer::None => None,
         Viewer::Spawn => {
@@ -436,16 +454,22 @@ pub fn open_stream(
     if let Some(id) = id {
         builder = builder.recording_id(id);
     }
-    let stream = match (file, grpc) {
-        (None, None) => return Ok(None),
-        (Some(path), None) => builder.save(path),
-        (Some(path), Some(grpc)) => {
-            let file = FileSink::new(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-            builder.set_sinks(vec![Box::new(file) as Box<dyn LogSink>, Box::new(grpc)])
-        }
-        (None, Some(grpc)) => builder.set_sinks(vec![Box::new(grpc) as Box<dyn LogSink>]),
-    };
-    stream.map(Some).map_err(|e| format!("cannot open the recording: {e}"))
+    let file = file.map(RecordingFile::create).transpose()?;
+    let file_failure = file.as_ref().map(RecordingFile::failure);
+    let mut sinks: Vec<Box<dyn LogSink>> = Vec::new();
+    sinks.extend(file.map(|f| Box::new(f) as Box<dyn LogSink>));
+    sinks.extend(grpc.map(|g| Box::new(g) as Box<dyn LogSink>));
+    if sinks.is_empty() {
+        return Ok(None);
+    }
+    let rec = builder.set_sinks(sinks).map_err(|e| format!("cannot open the recording: {e}"))?;
+    Ok(Some(Stream { rec, file_failure }))
+}
+
+/// An open recording stream, and the first write error of its file, if it writes one.
+pub struct Stream {
+    pub rec: RecordingStream,
+    pub file_failure: Option<FileFailure>,
 }
 
 /// The first executable called `name` on `PATH`.

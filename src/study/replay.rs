@@ -4,23 +4,16 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use rerun::RecordingStream;
-
 use crate::frame::Ending;
 use crate::inspect::mcap::Log;
 use crate::inspect::{ReadError, Recording, rrd};
-use crate::sink::rerun::RerunSink;
+use crate::sink::rerun::{RerunSink, Stream};
 use crate::sink::{Sink, SinkError};
 
 /// Re-emits `log` into `stream`. With `speed`, simulated time runs at `speed` × wall time.
 /// With `stop` set (by a signal), the replay ends after the current frame, its recording
 /// finished as an interrupted run's. Returns how many frames were replayed.
-pub fn replay(
-    log: &Log,
-    stream: RecordingStream,
-    speed: Option<f64>,
-    stop: Option<&AtomicBool>,
-) -> Result<usize, SinkError> {
+pub fn replay(log: &Log, stream: Stream, speed: Option<f64>, stop: Option<&AtomicBool>) -> Result<usize, SinkError> {
     let mut sink = RerunSink::new(stream, log.header.plan.clone());
     sink.begin(&log.header.layout)?;
     let start = Instant::now();
@@ -58,6 +51,7 @@ pub fn replayed_recording(log: &Log) -> Result<Recording, ReadError> {
         .enabled(true)
         .memory()
         .map_err(|e| ReadError(format!("cannot replay the log in memory: {e}")))?;
-    replay(log, stream, None, None).map_err(|e| ReadError(format!("cannot replay the log: {e}")))?;
+    replay(log, Stream { rec: stream, file_failure: None }, None, None)
+        .map_err(|e| ReadError(format!("cannot replay the log: {e}")))?;
     Ok(rrd::from_messages(storage.take().into_iter().map(Ok)))
 }
