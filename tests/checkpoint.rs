@@ -131,7 +131,7 @@ fn resumed_from_the_middle(method: &str) {
     assert_same_logs(&whole.join("paper_triangular.mcap"), &resumed.join("paper_triangular.mcap"));
 }
 
-/// The checkpoints kept in `dir` (`<stem>.<time>s.ckpt`), by time.
+/// The checkpoints kept in `dir` (`<stem>.<T>s.ckpt`), by time.
 fn kept_checkpoints(dir: &Path) -> Vec<PathBuf> {
     let mut kept: Vec<(f64, PathBuf)> = std::fs::read_dir(dir)
         .unwrap()

@@ -1,5 +1,5 @@
 //! Writing checkpoints for `slipfront run --checkpoint-every` and `slipfront resume`: where they
-//! go (`<out-dir>/<stem>.ckpt`, and with `--keep-checkpoints` `<stem>.<time>s.ckpt` besides),
+//! go (`<out-dir>/<stem>.ckpt`, and with `--keep-checkpoints` `<stem>.<T>s.ckpt` besides, T the multiple of the interval),
 //! what run they describe, and what they cost.
 
 use std::path::{Path, PathBuf};
@@ -45,8 +45,12 @@ impl Saver {
     pub fn save(&mut self, memory: &RunMemory) -> Result<(), String> {
         let start = Instant::now();
         let (time, _) = memory.scene.time_and_step();
-        // Named by the time to 6 significant digits: 300 s rather than 300.00000000000006 s.
-        let label: f64 = format!("{time:.5e}").parse().unwrap_or(time);
+        // Named by the multiple of the interval it was taken at (after the first step reaching
+        // it), to 6 significant digits: `300s` for a checkpoint at 300.007 s, not
+        // `300.00000000000006s`; the exact time is inside, and `resume` prints it.
+        let every = self.info.every;
+        let multiple = ((time / every) * (1.0 + 1e-12)).floor() * every;
+        let label: f64 = format!("{multiple:.5e}").parse().unwrap_or(multiple);
         let kept = self.keep.then(|| self.path.with_file_name(format!("{}.{label}s.ckpt", self.info.case.stem)));
         self.bytes += checkpoint::write(&self.path, kept.as_deref(), &self.info, memory)?;
         self.written += 1;

@@ -40,7 +40,7 @@ pub struct ResumeArgs {
     /// Checkpoint every SECONDS of simulated time [default: as the run did].
     #[arg(long, value_name = "SECONDS")]
     pub checkpoint_every: Option<String>,
-    /// Also keep each checkpoint as <case-stem>.<time>s.ckpt.
+    /// Also keep each checkpoint as <case-stem>.<T>s.ckpt (T the multiple of the interval it was taken at, e.g. 300s).
     #[arg(long)]
     pub keep_checkpoints: bool,
     /// Print nothing but errors: no progress bar, no summary.

@@ -60,7 +60,7 @@ pub struct RunArgs {
     /// time.t_end.
     #[arg(long, value_name = "SECONDS", num_args = 0..=1, default_missing_value = "")]
     pub checkpoint_every: Option<String>,
-    /// With --checkpoint-every, also keep each checkpoint as <case-stem>.<time>s.ckpt.
+    /// With --checkpoint-every, also keep each checkpoint as <case-stem>.<T>s.ckpt (T the multiple of the interval it was taken at, e.g. 300s).
     #[arg(long, requires = "checkpoint_every")]
     pub keep_checkpoints: bool,
     /// Print nothing but errors: no progress bar, no summary.
