@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Fuzzes slipfront's three readers of untrusted input with cargo fuzz (libFuzzer):
 #   case_parse  case text and --set overrides     (slipfront::fuzzing::case_parse)
-#   mcap_read   MCAP logs for check and replay    (slipfront::fuzzing::mcap_read)
+#   mcap_read   MCAP logs for check and replay    (slipfront::fuzzing::mcap_read; run it in fork mode,
+#               -fork=1, for long campaigns: Rerun's blueprint builder leaves 2 threads per replay)
 #   rrd_read    Rerun recordings for check         (slipfront::fuzzing::rrd_read)
 #
 # Usage: fuzz/run.sh [SECONDS_PER_TARGET] [--parallel]   (default 600; --parallel runs the three

@@ -438,3 +438,34 @@ fn a_log_alone_without_a_recording_holds_the_nodes() {
     let (code, text) = slipfront(&["check", log.to_str().unwrap()]);
     assert_eq!(code, 0, "{text}");
 }
+
+/// Rerun's recording-stream threads in this process (forwarding and batching threads, by name).
+fn stream_threads() -> usize {
+    std::fs::read_dir("/proc/self/task")
+        .unwrap()
+        .filter_map(|task| std::fs::read_to_string(task.ok()?.path().join("comm")).ok())
+        .filter(|name| name.starts_with("RecordingStream") || name.starts_with("ChunkBatcher"))
+        .count()
+}
+
+#[test]
+fn replaying_logs_in_memory_leaves_only_rerun_s_own_blueprint_stream_behind() {
+    // Each in-memory replay (what `check` does with a log) used to leave three recording streams
+    // running, 6 threads: Rerun's memory sink holds its own stream, so the stream is never
+    // dropped, and slipfront used it for the replay and twice for the blueprint; the `mcap_read`
+    // fuzz target ran the machine out of threads. slipfront's streams now end
+    // (`slipfront::sink::collected`). One remains inside Rerun 0.36 itself: `Blueprint::send`
+    // builds the blueprint through that memory sink (2 threads per recording).
+    let dir = scratch("threads");
+    let (_, log) = run_with_log("spring_block", &["time.t_end=2"], &dir);
+    let log = slipfront::inspect::mcap::read(&log).unwrap();
+    let first = slipfront::study::replay::replayed_recording(&log).unwrap();
+    assert!(!first.series.is_empty(), "the replay holds the series");
+    let before = stream_threads();
+    for _ in 0..50 {
+        slipfront::study::replay::replayed_recording(&log).unwrap();
+    }
+    let left = stream_threads().saturating_sub(before);
+    // Rerun's 2 per replay, and a few for streams the other tests of this file hold meanwhile.
+    assert!(left <= 2 * 50 + 10, "50 replays left {left} stream threads behind");
+}

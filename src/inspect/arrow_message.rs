@@ -63,7 +63,7 @@ fn ipc_stream_problem(stream: &[u8]) -> Option<String> {
         let mut word = i32::from_le_bytes(rest[..4].try_into().expect("4 bytes"));
         rest = &rest[4..];
         if word == -1 {
-            let Some(next) = rest.get(..4) else { return None };
+            let next = rest.get(..4)?;
             word = i32::from_le_bytes(next.try_into().expect("4 bytes"));
             rest = &rest[4..];
         }

@@ -26,6 +26,7 @@ use rerun::{AsComponents, RecordingStream, RecordingStreamBuilder, SeriesLines};
 use crate::frame::Quantity;
 use crate::frame::{Layout, SceneKind};
 use crate::record::schema;
+use crate::sink::collected;
 
 /// Names of the views, for readers that check them.
 pub const VIEW_BLOCK: &str = "Block";
@@ -69,25 +70,25 @@ pub fn send(rec: &RecordingStream, contents: &Contents<'_>) -> rerun::RecordingS
         .with_time_panel(TimePanel::new().with_timeline(schema::SIM_TIME).with_state(PanelState::Collapsed));
     let activation = BlueprintActivation { make_active: true, make_default: true };
     // The SDK sends a blueprint through a stream; a memory stream hands its messages back.
-    let (capture, storage) = RecordingStreamBuilder::new(schema::APP_ID).memory()?;
+    let (capture, collected) = collected::stream(RecordingStreamBuilder::new(schema::APP_ID))?;
     blueprint.send(&capture, activation)?;
-    let mut messages: Vec<LogMsg> = storage
-        .take()
+    let mut messages: Vec<LogMsg> = collected
+        .take(capture)
         .into_iter()
         .filter(|m| m.store_id().is_blueprint() && !matches!(m, LogMsg::BlueprintActivationCommand(_)))
         .collect();
     let Some(blueprint_id) = messages.first().map(|m| m.store_id().clone()) else {
         return Ok(());
     };
-    let (extra, extra_storage) =
-        RecordingStreamBuilder::from_store_id(&blueprint_id).send_properties(false).memory()?;
+    let (extra, extra_collected) =
+        collected::stream(RecordingStreamBuilder::from_store_id(&blueprint_id).send_properties(false))?;
     extra.set_time_sequence("blueprint", 0);
     for view in &properties {
         for (name, batches) in &view.batches {
             extra.log_serialized_batches(format!("{}/{name}", view.path), false, batches.iter().cloned())?;
         }
     }
-    messages.extend(extra_storage.take().into_iter().filter(|m| matches!(m, LogMsg::ArrowMsg(..))));
+    messages.extend(extra_collected.take(extra).into_iter().filter(|m| matches!(m, LogMsg::ArrowMsg(..))));
     rec.send_blueprint(messages, BlueprintActivationCommand { blueprint_id, make_active: true, make_default: true });
     Ok(())
 }

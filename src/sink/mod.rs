@@ -5,6 +5,7 @@
 pub mod blueprint;
 pub mod cadence;
 pub mod catalog;
+pub mod collected;
 pub mod geometry;
 pub mod mcap;
 pub mod memory;

@@ -7,6 +7,7 @@ use std::time::{Duration, Instant};
 use crate::frame::Ending;
 use crate::inspect::mcap::Log;
 use crate::inspect::{ReadError, Recording, rrd};
+use crate::sink::collected;
 use crate::sink::rerun::{RerunSink, Stream};
 use crate::sink::{Sink, SinkError};
 
@@ -47,11 +48,10 @@ const PACE_SLICE: Duration = Duration::from_millis(50);
 
 /// The recording a log replays into, read back for `check`.
 pub fn replayed_recording(log: &Log) -> Result<Recording, ReadError> {
-    let (stream, storage) = rerun::RecordingStreamBuilder::new(crate::record::schema::APP_ID)
-        .enabled(true)
-        .memory()
-        .map_err(|e| ReadError(format!("cannot replay the log in memory: {e}")))?;
-    replay(log, Stream { rec: stream, file_failure: None }, None, None)
+    let builder = rerun::RecordingStreamBuilder::new(crate::record::schema::APP_ID).enabled(true);
+    let (stream, collected) =
+        collected::stream(builder).map_err(|e| ReadError(format!("cannot replay the log in memory: {e}")))?;
+    replay(log, Stream { rec: stream.clone(), file_failure: None }, None, None)
         .map_err(|e| ReadError(format!("cannot replay the log: {e}")))?;
-    Ok(rrd::from_messages(storage.take().into_iter().map(Ok)))
+    Ok(rrd::from_messages(collected.take(stream).into_iter().map(Ok)))
 }
