@@ -34,8 +34,10 @@ cp seeds/*.mcap regressions/mcap_read/* corpus/mcap_read/
 cp seeds/spring_block.rrd regressions/rrd_read/* corpus/rrd_read/
 
 fuzz_one() {
+    local fork=""
+    [ "$1" = mcap_read ] && fork="-fork=1"
     RUSTC_BOOTSTRAP=1 nice -n "${2:-0}" cargo fuzz run -s none -O --debug-assertions "$1" "corpus/$1" -- \
-        -max_total_time="$seconds" -max_len=262144 -rss_limit_mb=4096 -timeout=20 -print_final_stats=1 \
+        $fork -max_total_time="$seconds" -max_len=262144 -rss_limit_mb=4096 -timeout=20 -print_final_stats=1 \
         > "fuzz-$1.log" 2>&1 || true
     echo "== $1: $seconds s"
     grep -E "^(#[0-9]+ +DONE|stat::number_of_executed_units|stat::peak_rss|==[0-9]+== ERROR|SUMMARY|Done)" \
