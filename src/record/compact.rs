@@ -13,12 +13,18 @@ use std::fs::File;
 use std::io::{BufReader, BufWriter};
 use std::path::{Path, PathBuf};
 
+use rerun::SizeBytes;
 use rerun::external::re_build_info::CrateVersion;
 use rerun::external::re_log_encoding::{DecoderApp, Encoder, EncodingOptions};
 use rerun::log::{Chunk, LogMsg};
 
 /// The most rows one compacted chunk holds.
 pub const MAX_ROWS: usize = 65_536;
+/// The most bytes (in memory) one compacted chunk holds: an entity is merged until either
+/// bound, so that compaction holds at most this much per entity whatever the file's size (a
+/// 1000 × 100 mesh's rows hold 100 000 points each: by rows alone, compacting its 1000 s
+/// recording took more than the machine's 24 GB).
+pub const MAX_BYTES: u64 = 32 << 20;
 
 /// Chunks before and after.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -85,19 +91,27 @@ fn write_compacted(path: &Path, out: &Path) -> Result<Compacted, String> {
         counts.chunks_before += 1;
         let chunk = Chunk::from_arrow_msg(arrow).map_err(|e| read_error(&e))?;
         let key = (format!("{store:?}"), chunk.entity_path().to_string(), chunk.is_static());
+        let bytes = chunk.heap_size_bytes();
         if let Some(entity) = held.get_mut(&key)
             && entity.rows + chunk.num_rows() <= MAX_ROWS
+            && entity.bytes + bytes <= MAX_BYTES
             && entity.pieces.last().is_some_and(|last| last.concatenable(&chunk))
         {
             entity.rows += chunk.num_rows();
+            entity.bytes += bytes;
             entity.pieces.push(chunk);
             continue;
         }
         if let Some(full) = held.remove(&key) {
             send_held(&mut BTreeMap::from([(key.clone(), full)]), &mut encoder)?;
         }
-        let entity =
-            Held { first: counts.chunks_before, store: store.clone(), rows: chunk.num_rows(), pieces: vec![chunk] };
+        let entity = Held {
+            first: counts.chunks_before,
+            store: store.clone(),
+            rows: chunk.num_rows(),
+            bytes,
+            pieces: vec![chunk],
+        };
         held.insert(key, entity);
     }
     send_held(&mut held, &mut encoder)?;
@@ -114,6 +128,8 @@ struct Held {
     first: usize,
     store: rerun::StoreId,
     rows: usize,
+    /// Their size in memory.
+    bytes: u64,
     pieces: Vec<Chunk>,
 }
 
