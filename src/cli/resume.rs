@@ -13,7 +13,7 @@ use crate::cli::outputs::{self, Named};
 use crate::cli::run::{Reporting, fits_in_memory, report};
 use crate::cli::signals::Stop;
 use crate::frame::SceneKind;
-use crate::record::checkpoint::{self, Checkpoint, CheckpointInfo};
+use crate::record::checkpoint::{self, Checkpoint, CheckpointInfo, SavedOutputs};
 use crate::record::schema::RecordingPlan;
 use crate::run::{Checkpoints, LoopOptions, RunMemory, run};
 use crate::scene::{self, Scene};
@@ -83,7 +83,7 @@ pub fn command(args: ResumeArgs) -> ExitCode {
     };
     let mut saver = Saver::new(
         &out_dir,
-        CheckpointInfo { every, outputs: outputs.saved(info), ..info.clone() },
+        CheckpointInfo { every, outputs: outputs.saved(&out_dir), ..info.clone() },
         args.keep_checkpoints,
     );
     let mut save = |memory: &RunMemory| saver.save(memory);
@@ -236,15 +236,10 @@ impl Outputs {
     }
 
     /// The outputs as the next checkpoints record them.
-    fn saved(&self, info: &CheckpointInfo) -> crate::record::checkpoint::SavedOutputs {
-        let absolute = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
-        crate::record::checkpoint::SavedOutputs {
-            out_dir: self.events.parent().map_or_else(|| info.outputs.out_dir.clone(), absolute),
-            events: absolute(&self.events),
-            ruptures: absolute(&self.ruptures),
-            rrd: self.rrd.as_ref().map(|c| absolute(&c.target)),
-            mcap: self.mcap.as_ref().map(|c| absolute(&c.target)),
-        }
+    fn saved(&self, out_dir: &Path) -> SavedOutputs {
+        let rrd = self.rrd.as_ref().map(|c| c.target.as_path());
+        let mcap = self.mcap.as_ref().map(|c| c.target.as_path());
+        SavedOutputs::new(out_dir, &self.events, &self.ruptures, rrd, mcap)
     }
 
     /// Compacts the recording; removes a file that was being written but never reached its

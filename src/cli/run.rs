@@ -171,7 +171,6 @@ impl Outputs {
         let Some(every) = self.every else { return Ok(None) };
         let text = std::fs::read_to_string(&args.case)
             .map_err(|e| fail(EXIT_INVALID, format!("{}: {e}", args.case.display())))?;
-        let absolute = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
         let info = CheckpointInfo {
             written_by: env!("CARGO_PKG_VERSION").into(),
             case: SavedCase {
@@ -180,13 +179,13 @@ impl Outputs {
                 text,
                 overrides: args.overrides.clone(),
             },
-            outputs: SavedOutputs {
-                out_dir: absolute(&args.out_dir),
-                events: absolute(&self.events),
-                ruptures: absolute(&self.ruptures),
-                rrd: self.rrd.as_deref().map(absolute),
-                mcap: args.mcap.as_deref().map(absolute),
-            },
+            outputs: SavedOutputs::new(
+                &args.out_dir,
+                &self.events,
+                &self.ruptures,
+                self.rrd.as_deref(),
+                args.mcap.as_deref(),
+            ),
             recording_id: RecordingPlan::for_case(&self.stem, case).recording_id,
             every,
         };

@@ -70,6 +70,21 @@ pub struct SavedOutputs {
     pub mcap: Option<PathBuf>,
 }
 
+impl SavedOutputs {
+    /// The outputs at these paths, made absolute, so that a resume from another folder finds
+    /// them.
+    pub fn new(out_dir: &Path, events: &Path, ruptures: &Path, rrd: Option<&Path>, mcap: Option<&Path>) -> Self {
+        let absolute = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+        Self {
+            out_dir: absolute(out_dir),
+            events: absolute(events),
+            ruptures: absolute(ruptures),
+            rrd: rrd.map(absolute),
+            mcap: mcap.map(absolute),
+        }
+    }
+}
+
 impl Checkpoint {
     /// Simulated time (s) and steps of the saved state.
     pub fn time_and_step(&self) -> (f64, u64) {
