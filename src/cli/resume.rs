@@ -230,7 +230,7 @@ impl Outputs {
             let stream = open_stream(Some(&c.writing), &Viewer::None, &info.case.stem, plan.recording_id.as_deref())
                 .map_err(|e| fail(EXIT_INVALID, e))?
                 .expect("a file was asked for");
-            sinks.push(Box::new(RerunSink::new(stream, plan).with_file(&c.writing).continuing(c.clone())));
+            sinks.push(Box::new(RerunSink::new(stream, plan).continuing(c.clone())));
         }
         Ok(sinks)
     }

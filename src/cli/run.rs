@@ -156,11 +156,7 @@ impl Outputs {
             sinks.push(Box::new(McapSink::create(path, plan.clone()).map_err(|e| fail(EXIT_INVALID, e))?));
         }
         if let Some(stream) = stream {
-            let sink = RerunSink::new(stream, plan);
-            sinks.push(Box::new(match &self.rrd {
-                Some(path) => sink.with_file(path),
-                None => sink,
-            }));
+            sinks.push(Box::new(RerunSink::new(stream, plan)));
         }
         Ok(sinks)
     }

@@ -66,7 +66,7 @@ pub struct RerunSink {
 impl RerunSink {
     /// A sink over an open recording stream.
     pub fn new(stream: Stream, plan: RecordingPlan) -> Self {
-        let Stream { rec, file_failure } = stream;
+        let Stream { rec, file, file_failure } = stream;
         rec.set_log_time_enabled(false);
         let needs = Needs {
             segment_state: plan.spec.quantities.iter().any(|q| q.needs_state()),
@@ -92,7 +92,7 @@ impl RerunSink {
             spacetime: None,
             needs,
             seen: 0,
-            file: None,
+            file,
             file_failure,
             continuation: None,
         }
@@ -104,12 +104,6 @@ impl RerunSink {
             Some(error) => Err(SinkError(error.clone())),
             None => Ok(()),
         }
-    }
-
-    /// The same sink, told the file its stream writes (synced at each checkpoint).
-    pub fn with_file(mut self, path: &std::path::Path) -> Self {
-        self.file = Some(path.to_path_buf());
-        self
     }
 
     /// The same sink continuing the recording of an interrupted run ([`Continuation`]).
@@ -454,6 +448,7 @@ pub fn open_stream(
     if let Some(id) = id {
         builder = builder.recording_id(id);
     }
+    let path = file.map(std::path::Path::to_path_buf);
     let file = file.map(RecordingFile::create).transpose()?;
     let file_failure = file.as_ref().map(RecordingFile::failure);
     let mut sinks: Vec<Box<dyn LogSink>> = Vec::new();
@@ -463,12 +458,14 @@ pub fn open_stream(
         return Ok(None);
     }
     let rec = builder.set_sinks(sinks).map_err(|e| format!("cannot open the recording: {e}"))?;
-    Ok(Some(Stream { rec, file_failure }))
+    Ok(Some(Stream { rec, file: path, file_failure }))
 }
 
-/// An open recording stream, and the first write error of its file, if it writes one.
+/// An open recording stream, and the file it writes, if any, with that file's first write
+/// error.
 pub struct Stream {
     pub rec: RecordingStream,
+    pub file: Option<std::path::PathBuf>,
     pub file_failure: Option<FileFailure>,
 }
 

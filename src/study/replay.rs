@@ -51,7 +51,7 @@ pub fn replayed_recording(log: &Log) -> Result<Recording, ReadError> {
     let builder = rerun::RecordingStreamBuilder::new(crate::record::schema::APP_ID).enabled(true);
     let (stream, collected) =
         collected::stream(builder).map_err(|e| ReadError(format!("cannot replay the log in memory: {e}")))?;
-    replay(log, Stream { rec: stream.clone(), file_failure: None }, None, None)
+    replay(log, Stream { rec: stream.clone(), file: None, file_failure: None }, None, None)
         .map_err(|e| ReadError(format!("cannot replay the log: {e}")))?;
     Ok(rrd::from_messages(collected.take(stream).into_iter().map(Ok)))
 }
