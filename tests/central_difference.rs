@@ -27,9 +27,9 @@ fn lanczos_finds_the_highest_frequency_of_a_dense_eigensolver() {
         dense[(i, j)] += v;
     }
     for p in &contact.points {
-        for a in 0..2 {
-            for b in 0..2 {
-                dense[(p.dofs[a], p.dofs[b])] += alpha_t * p.weight * p.shape[a] * p.shape[b];
+        for (a, c_a) in p.tangential.terms() {
+            for (b, c_b) in p.tangential.terms() {
+                dense[(a, b)] += alpha_t * p.weight * c_a * c_b;
             }
         }
     }

@@ -1,24 +1,85 @@
-//! The linear part of the equation of motion (14): lumped mass, stiffness, external load rate.
+//! The linear part of the equation of motion (14): lumped mass, stiffness, external load.
 
+use crate::dynamics::motion::Motion;
 use crate::linalg::sparse::SymmetricMatrix;
 
-/// `M a + K u = f⁰(t) + f_c`, with `M` diagonal (lumped) and `f⁰` growing linearly in time.
-/// Degrees of freedom with prescribed zero displacement (the fixed top) are not stored.
+/// `M a + K u = f⁰(t) + f_c`, with `M` diagonal (lumped). Degrees of freedom with prescribed
+/// displacement (a fixed or moving boundary, eq. 10's `S_v`) are not stored: their motion acts
+/// on the others as a load ([`Load`]).
 #[derive(Debug, Clone)]
 pub struct LinearBody {
     /// Lumped mass per degree of freedom (kg per unit thickness, or kg/m² per unit area).
     pub mass: Vec<f64>,
     /// Stiffness `K` (N/m per unit thickness, or Pa/m per unit area).
     pub stiffness: SymmetricMatrix,
-    /// External load rate `ḟ⁰`, constant in time; the load is `f⁰(t) = ḟ⁰ t` beyond the initial
-    /// equilibrium.
-    pub load_rate: Vec<f64>,
+    /// The external load `f⁰(t) = Σ pattern · g(t)` beyond the initial equilibrium.
+    pub loads: Vec<Load>,
+}
+
+/// One external load: a fixed pattern of nodal forces scaled by a function of time.
+#[derive(Debug, Clone)]
+pub struct Load {
+    /// Nodal forces per unit of [`Self::history`] (N/m per unit thickness, or Pa).
+    pub pattern: Vec<f64>,
+    pub history: LoadHistory,
+}
+
+/// How a [`Load`] grows with time.
+#[derive(Debug, Clone)]
+pub enum LoadHistory {
+    /// `g(t) = t`: a spring's far end moving at a constant velocity (the spring block).
+    Linear,
+    /// `g(t)` = a component of a prescribed displacement (m): the pattern is `-K_fp` of the
+    /// boundary's degrees of freedom along that component, so that a moving boundary pulls on
+    /// the body through its stiffness.
+    Displacement { motion: Motion, component: usize },
+    /// `g(t)` rises smoothly from 0 to 1 over `ramp` seconds (`s³ (10 - 15 s + 6 s²)`) and stays
+    /// there: a prescribed traction on `S_t` (eq. 10); `ramp = 0` applies it at once.
+    Ramp { ramp: f64 },
+}
+
+impl LoadHistory {
+    /// `g(t)`.
+    pub fn at(&self, t: f64) -> f64 {
+        match self {
+            LoadHistory::Linear => t,
+            LoadHistory::Displacement { motion, component } => motion.displacement_at(t)[*component],
+            LoadHistory::Ramp { ramp } => Motion::constant([1.0, 0.0], *ramp).velocity_at(t)[0],
+        }
+    }
+}
+
+/// The external load at one instant, read per degree of freedom ([`LinearBody::load_at`]).
+pub struct LoadAt<'a> {
+    terms: Vec<(&'a [f64], f64)>,
+}
+
+impl LoadAt<'_> {
+    /// `f⁰_i(t)`: `+0` without loads.
+    #[inline]
+    pub fn at(&self, i: usize) -> f64 {
+        match self.terms.as_slice() {
+            [] => 0.0,
+            [(pattern, g)] => pattern[i] * g,
+            terms => terms.iter().map(|(pattern, g)| pattern[i] * g).sum(),
+        }
+    }
 }
 
 impl LinearBody {
+    /// A body without external load.
+    pub fn new(mass: Vec<f64>, stiffness: SymmetricMatrix) -> Self {
+        Self { mass, stiffness, loads: Vec::new() }
+    }
+
     /// Number of degrees of freedom.
     pub fn dofs(&self) -> usize {
         self.mass.len()
+    }
+
+    /// The external load `f⁰(t)`, to be read per degree of freedom.
+    pub fn load_at(&self, t: f64) -> LoadAt<'_> {
+        LoadAt { terms: self.loads.iter().map(|l| (l.pattern.as_slice(), l.history.at(t))).collect() }
     }
 
     /// Kinetic energy `½ vᵀ M v`.

@@ -81,7 +81,8 @@ pub struct CentralDifference {
 
 impl CentralDifference {
     fn new(body: &LinearBody, contact: &ContactBoundary, displacement: &[f64]) -> Self {
-        let mut contact_dofs: Vec<usize> = contact.points.iter().flat_map(|p| p.dofs).collect();
+        let mut contact_dofs: Vec<usize> =
+            contact.points.iter().flat_map(|p| p.tangential.terms().map(|(dof, _)| dof)).collect();
         contact_dofs.sort_unstable();
         contact_dofs.dedup();
         let parallel = body.dofs() >= PARALLEL_FROM_DOFS;
@@ -120,13 +121,12 @@ impl CentralDifference {
 pub fn highest_frequency(body: &LinearBody, contact: &ContactBoundary) -> f64 {
     let n = body.dofs();
     let scale: Vec<f64> = body.mass.iter().map(|m| 1.0 / m.sqrt()).collect();
-    let alpha_t = contact.params.alpha_t;
     let mut scaled = vec![0.0; n];
     let apply = |x: &[f64], y: &mut [f64], scaled: &mut Vec<f64>| {
         scaled.iter_mut().zip(x.iter().zip(&scale)).for_each(|(s, (x, c))| *s = x * c);
         body.stiffness.mul_vec(scaled, y);
-        for point in &contact.points {
-            point.scatter(alpha_t * point.weight * point.interpolate(scaled), y);
+        for (k, point) in contact.points.iter().enumerate() {
+            point.scatter(contact.params(k).alpha_t * point.weight * point.interpolate(scaled), y);
         }
         y.iter_mut().zip(&scale).for_each(|(y, c)| *y *= c);
     };
@@ -219,8 +219,8 @@ impl CentralDifference {
     fn update_contact(&mut self, system: &mut System, time: f64, h: f64) -> Result<(), StepError> {
         let s = &mut system.state;
         let contact = &system.contact;
-        let base = contact.base_displacement_at(time + h) - contact.base_displacement_at(time);
-        let (params, points, displacement) = (&contact.params, &contact.points, &s.displacement);
+        let base = contact.base_slips(time, time + h);
+        let (points, displacement) = (&contact.points, &s.displacement);
         self.updates
             .par_iter_mut()
             .zip(s.contact.par_iter())
@@ -230,9 +230,9 @@ impl CentralDifference {
             .with_min_len(self.point_chunk)
             .for_each(|(k, (((update, state), &restart), previous))| {
                 let now = points[k].interpolate(displacement);
-                let slip = now - *previous - base;
+                let slip = now - *previous - base[k];
                 *previous = now;
-                *update = update_in_halves(params, state, slip, h, restart, 0);
+                *update = update_in_halves(contact.params(k), state, slip, h, restart, 0);
             });
         for &dof in &self.contact_dofs {
             self.contact_force[dof] = -system.initial_contact_force[dof];
@@ -255,6 +255,7 @@ impl CentralDifference {
     fn kick(&mut self, system: &mut System, t: f64, h: f64) {
         let s = &mut system.state;
         let (body, displacement) = (&system.body, &s.displacement);
+        let load = body.load_at(t);
         let mut stiffness_buffer = std::mem::take(&mut self.stiffness_force);
         let mut tasks = Vec::with_capacity(self.chunks.len());
         let (mut acceleration, mut velocity, mut stiffness_force) =
@@ -273,7 +274,7 @@ impl CentralDifference {
         let kick = |first: usize, acceleration: &mut [f64], velocity: &mut [f64], stiffness_force: &[f64]| {
             for (i, ((a, v), ku)) in acceleration.iter_mut().zip(velocity.iter_mut()).zip(stiffness_force).enumerate() {
                 let r = first + i;
-                *a = (t * body.load_rate[r] + shared.contact_force[r] - ku) * shared.inverse_mass[r];
+                *a = (load.at(r) + shared.contact_force[r] - ku) * shared.inverse_mass[r];
                 *v += 0.5 * h * *a;
             }
         };

@@ -66,11 +66,12 @@ impl Condensation {
         let matrix = SymmetricMatrix::from_triplets(n, &triplets);
         let operator = Cholesky::new(&matrix)?;
 
-        let mut dofs: Vec<usize> = points.iter().flat_map(|p| p.dofs).collect();
+        let mut dofs: Vec<usize> = points.iter().flat_map(|p| p.tangential.terms().map(|(dof, _)| dof)).collect();
         dofs.sort_unstable();
         dofs.dedup();
         let index = |dof: usize| dofs.binary_search(&dof).expect("every point's dofs are listed");
-        let local_points = points.iter().map(|p| ContactPoint { dofs: p.dofs.map(index), ..*p }).collect();
+        let local_points =
+            points.iter().map(|p| ContactPoint { tangential: p.tangential.renumbered(index), ..*p }).collect();
 
         let k = dofs.len();
         let mut compliance = Mat::<f64>::zeros(k, k);
@@ -186,20 +187,19 @@ impl Condensation {
     fn newton_matrix(&self, stiffness: &[f64]) -> Result<NewtonMatrix, FactorError> {
         let k = self.size();
         let mut matrix = Mat::<f64>::identity(k, k);
-        // (G K_c)[:, b] = Σ_p k_p N_a N_b G[:, a].
+        // (G K_c)[:, b] = Σ_p k_p c_a c_b G[:, a], c the point's tangential factors.
         for (point, &kp) in self.points.iter().zip(stiffness) {
             if kp == 0.0 {
                 continue;
             }
-            for a in 0..2 {
-                for b in 0..2 {
-                    let scale = kp * point.shape[a] * point.shape[b];
+            for (dof_a, c_a) in point.tangential.terms() {
+                for (dof_b, c_b) in point.tangential.terms() {
+                    let scale = kp * c_a * c_b;
                     if scale == 0.0 {
                         continue;
                     }
-                    let source = self.compliance.col(point.dofs[a]);
-                    let target =
-                        matrix.as_mut().col_mut(point.dofs[b]).try_as_col_major_mut().expect("contiguous column");
+                    let source = self.compliance.col(dof_a);
+                    let target = matrix.as_mut().col_mut(dof_b).try_as_col_major_mut().expect("contiguous column");
                     let source = source.try_as_col_major().expect("contiguous column");
                     for (t, g) in target.as_slice_mut().iter_mut().zip(source.as_slice()) {
                         *t += scale * g;

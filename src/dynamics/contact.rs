@@ -1,77 +1,216 @@
 //! The contact force boundary `S_c`: Gauss points that carry friction states (paper §2.2).
+//!
+//! A contact is a curve of the body pressed against a rigid counter body (the paper's main
+//! body). At each Gauss point the unit tangent `t` and normal `n` come from the curve: `n`
+//! points from the counter body into the body, `t` is `n` turned clockwise by a right angle,
+//! so the body lies on the left of `t` (docs/model.md, "Bodies, normal and signs"). Every
+//! traction and slip of the friction law is along this local frame.
 
+use crate::dynamics::motion::Motion;
 use crate::friction::FrictionParams;
 
+/// A linear combination of degrees of freedom, `Σ c_k u[d_k]`: how a contact point reads a
+/// component of the body's displacement along a direction. Terms with a zero factor are not
+/// stored, so a contact along x reads only x degrees of freedom, in the order given.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Projection {
+    dofs: [usize; 4],
+    factors: [f64; 4],
+    len: usize,
+}
+
+impl Projection {
+    /// `Σ factor · u[dof]` over `terms`, at most four; zero factors are dropped.
+    pub fn new(terms: impl IntoIterator<Item = (usize, f64)>) -> Self {
+        let mut projection = Self::default();
+        for (dof, factor) in terms {
+            if factor != 0.0 {
+                assert!(projection.len < 4, "a contact point reads at most two nodes of two components");
+                projection.dofs[projection.len] = dof;
+                projection.factors[projection.len] = factor;
+                projection.len += 1;
+            }
+        }
+        projection
+    }
+
+    /// `Σ c_k field[d_k]`.
+    #[inline]
+    pub fn apply(&self, field: &[f64]) -> f64 {
+        if self.len == 0 {
+            return 0.0;
+        }
+        let mut sum = self.factors[0] * field[self.dofs[0]];
+        for k in 1..self.len {
+            sum += self.factors[k] * field[self.dofs[k]];
+        }
+        sum
+    }
+
+    /// `forces[d_k] += scale · c_k`: the transpose of [`Self::apply`].
+    #[inline]
+    pub fn scatter(&self, scale: f64, forces: &mut [f64]) {
+        for k in 0..self.len {
+            forces[self.dofs[k]] += scale * self.factors[k];
+        }
+    }
+
+    /// The `(dof, factor)` terms.
+    pub fn terms(&self) -> impl Iterator<Item = (usize, f64)> + '_ {
+        (0..self.len).map(|k| (self.dofs[k], self.factors[k]))
+    }
+
+    /// The same projection with its degrees of freedom renumbered by `map`.
+    pub fn renumbered(&self, map: impl Fn(usize) -> usize) -> Self {
+        let mut out = *self;
+        for k in 0..self.len {
+            out.dofs[k] = map(self.dofs[k]);
+        }
+        out
+    }
+}
+
 /// One integration point of the contact boundary. Its relative tangential displacement is
-/// `ū = Σ_a N_a u[dof_a] - u_base` (eq. 12 with the shape functions `Ñ` of eq. 13), and it
-/// contributes `weight · Ñᵀ f_t` to the nodal forces.
+/// `ū_t = t · Σ_a N_a u_a - t · u_base` (eq. 12 with the shape functions `Ñ` of eq. 13), and it
+/// contributes `weight · Ñᵀ f_t t` to the nodal forces.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactPoint {
-    /// Tangential degrees of freedom of the body that the point interpolates.
-    pub dofs: [usize; 2],
-    /// Shape function values at the point (the second is 0 for a single-node point).
-    pub shape: [f64; 2],
+    /// `t · Σ N_a u_a`: the body's displacement along the tangent at the point.
+    pub tangential: Projection,
+    /// `n · Σ N_a u_a`: along the normal.
+    pub normal: Projection,
     /// Integration weight: Gauss weight × Jacobian (m per unit thickness), or 1 per unit area.
     pub weight: f64,
-    /// Position along the surface (m), for output.
-    pub x: f64,
+    /// The contact surface the point belongs to ([`ContactBoundary::surfaces`]).
+    pub surface: usize,
+    /// Unit tangent `t` (global x, y).
+    pub tangent: [f64; 2],
+    /// Direction (±1) in which the drive first loads `f_t`: the sign of the initial traction `f0`.
+    pub loading_direction: f64,
 }
 
 impl ContactPoint {
     /// A point that follows a single degree of freedom with unit weight (per unit area).
-    pub fn single(dof: usize) -> Self {
-        Self { dofs: [dof, dof], shape: [1.0, 0.0], weight: 1.0, x: 0.0 }
+    pub fn single(dof: usize, loading_direction: f64) -> Self {
+        Self {
+            tangential: Projection::new([(dof, 1.0)]),
+            normal: Projection::default(),
+            weight: 1.0,
+            surface: 0,
+            tangent: [1.0, 0.0],
+            loading_direction,
+        }
     }
 
-    /// `Σ_a N_a field[dof_a]`.
+    /// `t · Σ_a N_a field_a`.
+    #[inline]
     pub fn interpolate(&self, field: &[f64]) -> f64 {
-        self.shape[0] * field[self.dofs[0]] + self.shape[1] * field[self.dofs[1]]
+        self.tangential.apply(field)
     }
 
-    /// `forces += scale · Ñᵀ`.
+    /// `forces += scale · Ñᵀ t`.
+    #[inline]
     pub fn scatter(&self, scale: f64, forces: &mut [f64]) {
-        forces[self.dofs[0]] += scale * self.shape[0];
-        forces[self.dofs[1]] += scale * self.shape[1];
+        self.tangential.scatter(scale, forces);
     }
 }
 
-/// The frictional boundary: its law, its points, and the base it slides against.
+/// How a contact's counter body moves.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CounterBody {
+    /// Its velocity history (m/s).
+    pub motion: Motion,
+    /// Whether [`Self::motion`]'s first component is a speed along each point's tangent (the
+    /// block's base, sliding along its contact) rather than a velocity in x and y.
+    pub along_tangent: bool,
+}
+
+impl CounterBody {
+    /// Held still.
+    pub fn at_rest() -> Self {
+        Self { motion: Motion::at_rest(), along_tangent: true }
+    }
+
+    /// The component of a velocity or displacement `value` of the counter body along `point`'s
+    /// tangent.
+    #[inline]
+    pub fn along(&self, point: &ContactPoint, value: [f64; 2]) -> f64 {
+        if self.along_tangent { value[0] } else { point.tangent[0] * value[0] + point.tangent[1] * value[1] }
+    }
+}
+
+/// One frictional contact: its law and its counter body.
+#[derive(Debug, Clone)]
+pub struct ContactSurface {
+    pub params: FrictionParams,
+    pub counter_body: CounterBody,
+}
+
+/// The frictional boundary: its surfaces, their points and the points' normal tractions.
 #[derive(Debug, Clone)]
 pub struct ContactBoundary {
-    pub params: FrictionParams,
+    pub surfaces: Vec<ContactSurface>,
     pub points: Vec<ContactPoint>,
     /// Normal traction `f_n ≥ 0` at each point (Pa), held constant.
     pub traction_n: Vec<f64>,
-    /// Velocity of the base (main body) along `x` (m/s), reached after `base_ramp`.
-    pub base_velocity: f64,
-    /// Time over which the base accelerates smoothly from rest (s); 0 starts it impulsively.
-    pub base_ramp: f64,
-    /// Direction (±1) in which the drive loads `f_t`: sets the sign of the initial traction `f0`.
-    pub loading_direction: f64,
 }
 
 impl ContactBoundary {
-    /// Base velocity at `t`: `v s³ (10 - 15 s + 6 s²)`, `s = t/T`, during the ramp `T`, then
-    /// `v`. Acceleration and jerk are continuous and vanish at both ends of the ramp, so the
-    /// start excites the stiff contact modes as little as a polynomial ramp can.
-    pub fn base_velocity_at(&self, t: f64) -> f64 {
-        let ramp = self.base_ramp;
-        if t >= ramp {
-            self.base_velocity
-        } else {
-            let s = t / ramp;
-            self.base_velocity * s * s * s * (10.0 - 15.0 * s + 6.0 * s * s)
-        }
+    /// One surface of law `params` and counter body `counter_body` holding every point.
+    pub fn single(
+        params: FrictionParams,
+        counter_body: CounterBody,
+        points: Vec<ContactPoint>,
+        traction_n: Vec<f64>,
+    ) -> Self {
+        Self { surfaces: vec![ContactSurface { params, counter_body }], points, traction_n }
     }
 
-    /// Base displacement at `t`, the integral of [`Self::base_velocity_at`].
-    pub fn base_displacement_at(&self, t: f64) -> f64 {
-        let ramp = self.base_ramp;
-        if t >= ramp {
-            self.base_velocity * (t - 0.5 * ramp)
-        } else {
-            let s = t / ramp;
-            self.base_velocity * ramp * s * s * s * s * (2.5 - 3.0 * s + s * s)
-        }
+    /// The friction law of point `k`.
+    #[inline]
+    pub fn params(&self, k: usize) -> &FrictionParams {
+        &self.surfaces[self.points[k].surface].params
+    }
+
+    /// Each surface's counter-body velocity at `t`, for [`Self::base_along`].
+    pub fn base_velocities(&self, t: f64) -> Vec<[f64; 2]> {
+        self.surfaces.iter().map(|s| s.counter_body.motion.velocity_at(t)).collect()
+    }
+
+    /// Each surface's counter-body displacement from `t0` to `t1`, for [`Self::base_along`]
+    /// (the same projection applies).
+    pub fn base_increments(&self, t0: f64, t1: f64) -> Vec<[f64; 2]> {
+        self.surfaces
+            .iter()
+            .map(|s| {
+                let (a, b) = (s.counter_body.motion.displacement_at(t1), s.counter_body.motion.displacement_at(t0));
+                [a[0] - b[0], a[1] - b[1]]
+            })
+            .collect()
+    }
+
+    /// The counter body's velocity (or displacement) along point `k`'s tangent, from the
+    /// surfaces' values `per_surface` ([`Self::base_velocities`], [`Self::base_increments`]).
+    #[inline]
+    pub fn base_along(&self, k: usize, per_surface: &[[f64; 2]]) -> f64 {
+        let point = &self.points[k];
+        self.surfaces[point.surface].counter_body.along(point, per_surface[point.surface])
+    }
+
+    /// The counter bodies' displacement from `t0` to `t1` along each point's tangent (m).
+    pub fn base_slips(&self, t0: f64, t1: f64) -> Vec<f64> {
+        let bases = self.base_increments(t0, t1);
+        (0..self.points.len()).map(|k| self.base_along(k, &bases)).collect()
+    }
+
+    /// The counter bodies' velocity at `t` along each point's tangent (m/s).
+    pub fn base_velocities_along(&self, t: f64) -> Vec<f64> {
+        let bases = self.base_velocities(t);
+        (0..self.points.len()).map(|k| self.base_along(k, &bases)).collect()
+    }
+
+    /// The largest speed of any counter body (m/s).
+    pub fn largest_base_speed(&self) -> f64 {
+        self.surfaces.iter().map(|s| s.counter_body.motion.largest_speed()).fold(0.0, f64::max)
     }
 }

@@ -43,21 +43,30 @@ impl EnergyLedger {
     /// `dt` from `old` to `new`.
     pub(crate) fn add_step(&mut self, body: &LinearBody, contact: &ContactBoundary, old: &State, new: &State, dt: f64) {
         let power_base = |state: &State| -> f64 {
-            let v = contact.base_velocity_at(state.time);
-            contact.points.iter().zip(&state.contact).map(|(p, c)| p.weight * c.traction_t * v).sum()
+            let bases = contact.base_velocities(state.time);
+            contact
+                .points
+                .iter()
+                .zip(&state.contact)
+                .enumerate()
+                .map(|(k, (p, c))| p.weight * c.traction_t * contact.base_along(k, &bases))
+                .sum()
         };
         let power_load = |state: &State| -> f64 {
-            body.load_rate.iter().zip(&state.velocity).map(|(f, v)| state.time * f * v).sum()
+            let load = body.load_at(state.time);
+            state.velocity.iter().enumerate().map(|(i, v)| load.at(i) * v).sum()
         };
         self.work_base += 0.5 * dt * (power_base(old) + power_base(new));
-        // The load is linear in time and the velocity quadratic over the step (linear
-        // acceleration), so Simpson's rule integrates the load's power exactly.
-        let t_mid = old.time + 0.5 * dt;
-        let power_load_mid: f64 = body
-            .load_rate
+        // A load linear in time (the spring block's) with the velocity quadratic over the step
+        // (linear acceleration): Simpson's rule integrates the load's power exactly.
+        let load_mid = body.load_at(old.time + 0.5 * dt);
+        let power_load_mid: f64 = old
+            .velocity
             .iter()
-            .zip(old.velocity.iter().zip(&old.acceleration).zip(&new.acceleration))
-            .map(|(f, ((v, a0), a1))| t_mid * f * (v + 0.5 * dt * a0 + 0.125 * dt * (a1 - a0)))
+            .zip(&old.acceleration)
+            .zip(&new.acceleration)
+            .enumerate()
+            .map(|(i, ((v, a0), a1))| load_mid.at(i) * (v + 0.5 * dt * a0 + 0.125 * dt * (a1 - a0)))
             .sum();
         self.work_load += dt / 6.0 * (power_load(old) + 4.0 * power_load_mid + power_load(new));
         self.dissipation += contact
@@ -87,13 +96,15 @@ impl EnergyLedger {
         self.kinetic = body.kinetic_energy(&s.velocity);
         self.strain = body.strain_energy(&s.displacement)
             + s.displacement.iter().zip(initial_contact_force).map(|(u, f)| u * f).sum::<f64>();
-        let alpha = contact.params.alpha_t;
         self.contact_elastic = contact
             .points
             .iter()
             .zip(&s.contact)
             .zip(initial_traction)
-            .map(|((p, c), f0)| p.weight * (c.traction_t * c.traction_t - f0 * f0) / (2.0 * alpha))
+            .enumerate()
+            .map(|(k, ((p, c), f0))| {
+                p.weight * (c.traction_t * c.traction_t - f0 * f0) / (2.0 * contact.params(k).alpha_t)
+            })
             .sum();
     }
 }

@@ -18,8 +18,9 @@ pub(super) struct Operator {
     diagonal: Vec<usize>,
     /// Position of each entry of `K`, in `K`'s order.
     stiffness_entries: Vec<usize>,
-    /// Positions of each contact point's 2 × 2 coupling of its two nodes.
-    point_entries: Vec<[usize; 4]>,
+    /// Positions of each contact point's coupling of its tangential degrees of freedom, pair by
+    /// pair in the order of [`crate::dynamics::Projection::terms`].
+    point_entries: Vec<Vec<usize>>,
     cholesky: Cholesky,
     /// The mass coefficient and contact stiffnesses factored last; `None` after a failure.
     factored: Option<(f64, Vec<f64>)>,
@@ -32,9 +33,9 @@ impl Operator {
         let mut triplets: Vec<(usize, usize, f64)> = body.stiffness.entries().collect();
         triplets.extend((0..n).map(|i| (i, i, 0.0)));
         for p in &contact.points {
-            for a in 0..2 {
-                for b in 0..2 {
-                    triplets.push((p.dofs[a], p.dofs[b], 0.0));
+            for (a, _) in p.tangential.terms() {
+                for (b, _) in p.tangential.terms() {
+                    triplets.push((a, b, 0.0));
                 }
             }
         }
@@ -49,8 +50,11 @@ impl Operator {
             .points
             .iter()
             .map(|p| {
-                let pos = |a: usize, b: usize| matrix.position(p.dofs[a], p.dofs[b]).expect("contact entry in pattern");
-                [pos(0, 0), pos(0, 1), pos(1, 0), pos(1, 1)]
+                let terms = || p.tangential.terms();
+                terms()
+                    .flat_map(|(a, _)| terms().map(move |(b, _)| (a, b)))
+                    .map(|(a, b)| matrix.position(a, b).expect("contact entry in pattern"))
+                    .collect()
             })
             .collect();
         let cholesky = Cholesky::analyze(&matrix)?;
@@ -87,11 +91,11 @@ impl Operator {
             values[pos] += c0 * body.mass[i];
         }
         for ((point, entries), &k) in contact.points.iter().zip(&self.point_entries).zip(contact_stiffness) {
-            let [n0, n1] = point.shape;
-            values[entries[0]] += k * n0 * n0;
-            values[entries[1]] += k * n0 * n1;
-            values[entries[2]] += k * n1 * n0;
-            values[entries[3]] += k * n1 * n1;
+            let terms = || point.tangential.terms();
+            let pairs = terms().flat_map(|(_, c_a)| terms().map(move |(_, c_b)| (c_a, c_b)));
+            for (&entry, (c_a, c_b)) in entries.iter().zip(pairs) {
+                values[entry] += k * c_a * c_b;
+            }
         }
         // Until it succeeds, nothing is factored.
         self.factored = None;

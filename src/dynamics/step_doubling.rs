@@ -109,14 +109,15 @@ impl Integrator for StepDoubling {
 
 /// The largest scaled difference between two states of `system` reached from the same start.
 fn local_error(system: &System, a: &State, b: &State) -> f64 {
-    let params = &system.contact.params;
-    let range = (params.max_structure() - 1.0).max(f64::MIN_POSITIVE);
     let traction = a
         .contact
         .iter()
         .zip(&b.contact)
-        .filter(|(_, c)| c.traction_n > 0.0)
-        .map(|(x, y)| {
+        .enumerate()
+        .filter(|(_, (_, c))| c.traction_n > 0.0)
+        .map(|(k, (x, y))| {
+            let params = system.contact.params(k);
+            let range = (params.max_structure() - 1.0).max(f64::MIN_POSITIVE);
             let strength = params.mu_s * y.traction_n;
             ((x.traction_t - y.traction_t).abs() / strength).max((x.structure - y.structure).abs() / range)
         })

@@ -55,10 +55,10 @@ impl System {
     /// Sets up the system at rest in its initial equilibrium.
     pub fn new(body: LinearBody, contact: ContactBoundary, settings: Settings) -> Result<Self, StepError> {
         let n = body.dofs();
-        let states: Vec<ContactState> = contact
-            .traction_n
-            .iter()
-            .map(|&fn_| ContactState::initial(&contact.params, fn_, contact.loading_direction))
+        let states: Vec<ContactState> = (0..contact.points.len())
+            .map(|k| {
+                ContactState::initial(contact.params(k), contact.traction_n[k], contact.points[k].loading_direction)
+            })
             .collect();
         let initial_traction: Vec<f64> = states.iter().map(|s| s.traction_t).collect();
         let mut initial_contact_force = vec![0.0; n];
@@ -66,12 +66,15 @@ impl System {
             point.scatter(point.weight * s.traction_t, &mut initial_contact_force);
         }
         let n_points = contact.points.len();
-        let p = &contact.params;
         let energy_scale = contact
             .points
             .iter()
             .zip(&contact.traction_n)
-            .map(|(point, f_n)| point.weight * (p.mu_k * f_n).powi(2) / (2.0 * p.alpha_t))
+            .enumerate()
+            .map(|(k, (point, f_n))| {
+                let p = contact.params(k);
+                point.weight * (p.mu_k * f_n).powi(2) / (2.0 * p.alpha_t)
+            })
             .sum();
         let mut system = Self {
             state: State {
@@ -240,11 +243,9 @@ impl System {
         let s = &self.state;
         let mut imbalance = vec![0.0; self.body.dofs()];
         self.body.stiffness.mul_vec(&s.displacement, &mut imbalance);
+        let load = self.body.load_at(s.time);
         for (i, e) in imbalance.iter_mut().enumerate() {
-            *e = s.time * self.body.load_rate[i]
-                - self.initial_contact_force[i]
-                - self.body.mass[i] * s.acceleration[i]
-                - *e;
+            *e = load.at(i) - self.initial_contact_force[i] - self.body.mass[i] * s.acceleration[i] - *e;
         }
         for (point, c) in self.contact.points.iter().zip(&s.contact) {
             point.scatter(point.weight * c.traction_t, &mut imbalance);

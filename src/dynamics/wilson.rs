@@ -91,8 +91,8 @@ struct CondensedSystem<'a> {
     restarts: &'a [Option<Restart>],
     condensation: &'a Condensation,
     tau: f64,
-    /// How far the base moves over `τ`.
-    base: f64,
+    /// How far the counter body moves over `τ` along each point's tangent.
+    base: Vec<f64>,
     /// `Pᵀ w`.
     free_contact: Vec<f64>,
 }
@@ -106,7 +106,7 @@ impl NewtonProblem for CondensedSystem<'_> {
         previous: Option<&ContactResponse>,
     ) -> Result<(Vec<f64>, ContactResponse), StepError> {
         let c = self.condensation;
-        let slips: Vec<f64> = c.points.iter().map(|p| p.interpolate(x) - self.base).collect();
+        let slips: Vec<f64> = c.points.iter().zip(&self.base).map(|(p, base)| p.interpolate(x) - base).collect();
         let restarts = previous.map_or(self.restarts, |p| &p.restarts);
         let response = contact_response(self.system, &slips, self.tau, restarts)?;
         let g = c.compliance_times(&c.forces(&response.weighted_traction));
@@ -186,7 +186,7 @@ impl Wilson {
             restarts: &self.restarts,
             condensation: c,
             tau,
-            base: base_increment(system, tau),
+            base: system.contact.base_slips(system.state.time, system.state.time + tau),
             free_contact: c.dofs.iter().map(|&d| free[d]).collect(),
         };
         let converged = newton(&mut problem, &settings, scale, start)?;
@@ -312,12 +312,12 @@ fn advance_contact(
     restarts: &[Option<Restart>],
 ) -> Result<Vec<Option<Restart>>, StepError> {
     let (old, contact, theta) = (&system.state, &system.contact, system.settings.theta);
-    let base = contact.base_displacement_at(old.time + dt) - contact.base_displacement_at(old.time);
+    let base = contact.base_slips(old.time, old.time + dt);
     let mut next_restarts = Vec::with_capacity(contact.points.len());
     for (k, point) in contact.points.iter().enumerate() {
-        let slip = point.interpolate(du) - base;
+        let slip = point.interpolate(du) - base[k];
         let restart = restarts[k].map(|r| r.scaled(1.0 / theta));
-        let updated = update_from(&contact.params, &old.contact[k], slip, dt, restart)
+        let updated = update_from(contact.params(k), &old.contact[k], slip, dt, restart)
             .map_err(|error| StepError::Friction { point: k, state: old.contact[k], error })?;
         next.contact[k] = updated.state;
         next.plastic_increment[k] = updated.plastic_increment;
@@ -349,8 +349,10 @@ fn evaluate(
     restarts: &[Option<Restart>],
 ) -> Result<(Vec<f64>, ContactResponse), StepError> {
     let mut residual = body_residual(system, du_theta, tau);
-    let base = base_increment(system, tau);
-    let slips: Vec<f64> = system.contact.points.iter().map(|p| p.interpolate(du_theta) - base).collect();
+    let t = system.state.time;
+    let base = system.contact.base_slips(t, t + tau);
+    let slips: Vec<f64> =
+        system.contact.points.iter().zip(&base).map(|(p, base)| p.interpolate(du_theta) - base).collect();
     let response = contact_response(system, &slips, tau, restarts)?;
     for (point, &t) in system.contact.points.iter().zip(&response.weighted_traction) {
         point.scatter(-t, &mut residual);
@@ -366,18 +368,11 @@ fn body_residual(system: &System, du_theta: &[f64], tau: f64) -> Vec<f64> {
     let u_theta: Vec<f64> = s.displacement.iter().zip(du_theta).map(|(u, d)| u + d).collect();
     let mut residual = vec![0.0; du_theta.len()];
     system.body.stiffness.mul_vec(&u_theta, &mut residual);
-    let t_theta = s.time + tau;
+    let load = system.body.load_at(s.time + tau);
     for (i, r) in residual.iter_mut().enumerate() {
-        *r += system.body.mass[i] * acceleration[i] - t_theta * system.body.load_rate[i]
-            + system.initial_contact_force[i];
+        *r += system.body.mass[i] * acceleration[i] - load.at(i) + system.initial_contact_force[i];
     }
     residual
-}
-
-/// How far the base moves over `[t_n, t_n + τ]`.
-fn base_increment(system: &System, tau: f64) -> f64 {
-    let t = system.state.time;
-    system.contact.base_displacement_at(t + tau) - system.contact.base_displacement_at(t)
 }
 
 /// Updates every contact point over `τ` by its relative slip increment.
@@ -387,7 +382,6 @@ fn contact_response(
     tau: f64,
     restarts: &[Option<Restart>],
 ) -> Result<ContactResponse, StepError> {
-    let params = &system.contact.params;
     let count = system.contact.points.len();
     let mut response = ContactResponse {
         weighted_traction: Vec::with_capacity(count),
@@ -396,11 +390,8 @@ fn contact_response(
     };
     for (k, ((point, state), &slip)) in system.contact.points.iter().zip(&system.state.contact).zip(slips).enumerate() {
         let restart = restarts.get(k).copied().flatten();
-        let updated = update_from(params, state, slip, tau, restart).map_err(|error| StepError::Friction {
-            point: k,
-            state: *state,
-            error,
-        })?;
+        let updated = update_from(system.contact.params(k), state, slip, tau, restart)
+            .map_err(|error| StepError::Friction { point: k, state: *state, error })?;
         response.weighted_traction.push(point.weight * updated.state.traction_t);
         response.stiffness.push(-point.weight * updated.tangent);
         response.restarts.push(updated.restart);

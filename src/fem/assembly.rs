@@ -2,7 +2,7 @@
 
 use nalgebra::Vector2;
 
-use crate::dynamics::{ContactBoundary, ContactPoint, LinearBody};
+use crate::dynamics::{ContactBoundary, ContactPoint, CounterBody, LinearBody, Motion, Projection};
 use crate::fem::element::{GAUSS_2, PlaneStrain, lumped_mass, stiffness};
 use crate::fem::mesh::StructuredMesh;
 use crate::friction::FrictionParams;
@@ -81,7 +81,14 @@ pub fn assemble(
             let x = mesh.contact_point_x(k, xi);
             let shape = [0.5 * (1.0 - xi), 0.5 * (1.0 + xi)];
             let weight = 0.5 * dx;
-            points.push(ContactPoint { dofs: [left_x, right_x], shape, weight, x });
+            points.push(ContactPoint {
+                tangential: Projection::new([(left_x, shape[0]), (right_x, shape[1])]),
+                normal: Projection::new([(left_y, shape[0]), (right_y, shape[1])]),
+                weight,
+                surface: 0,
+                tangent: [1.0, 0.0],
+                loading_direction: if base_velocity < 0.0 { -1.0 } else { 1.0 },
+            });
             tractions.push(normal_traction(x));
             // Normal spring: α_n ∫ Ñᵀ Ñ ds on the y degrees of freedom.
             let normal = [left_y, right_y];
@@ -92,9 +99,8 @@ pub fn assemble(
             }
         }
     }
-    let body = LinearBody { mass, stiffness: SymmetricMatrix::from_triplets(n, &triplets), load_rate: vec![0.0; n] };
-    let loading_direction = if base_velocity < 0.0 { -1.0 } else { 1.0 };
-    let contact =
-        ContactBoundary { params, points, traction_n: tractions, base_velocity, base_ramp, loading_direction };
+    let body = LinearBody::new(mass, SymmetricMatrix::from_triplets(n, &triplets));
+    let counter_body = CounterBody { motion: Motion::constant([base_velocity, 0.0], base_ramp), along_tangent: true };
+    let contact = ContactBoundary::single(params, counter_body, points, tractions);
     Block { mesh, body, contact }
 }

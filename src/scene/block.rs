@@ -109,7 +109,7 @@ impl Shape for BlockShape {
         let segments = (0..self.mesh.nx)
             .map(|k| {
                 segment_sample(
-                    &system.contact.params,
+                    system.contact.params(2 * k),
                     (2 * k..2 * k + 2).map(|p| (points[p].weight, s.contact[p], s.slip_rate(p, dt))),
                     needs.segment_state,
                 )
@@ -134,7 +134,7 @@ impl Shape for BlockShape {
             surface_nodes,
             mesh,
             friction_force,
-            base_displacement: system.contact.base_displacement_at(s.time),
+            base_displacement: system.contact.surfaces[0].counter_body.motion.displacement_at(s.time)[0],
             block: None,
         }
     }

@@ -2,7 +2,7 @@
 //! whose far end moves at a constant velocity (Ozaki & Hashiguchi 2010).
 
 use crate::case::{Case, SpringBlockSpec};
-use crate::dynamics::{ContactBoundary, ContactPoint, LinearBody, Settings, System};
+use crate::dynamics::{ContactBoundary, ContactPoint, CounterBody, LinearBody, Load, LoadHistory, Settings, System};
 use crate::frame::{Frame, Layout, Needs, SceneKind, SegmentInfo};
 use crate::linalg::sparse::SymmetricMatrix;
 use crate::scene::dynamic::{DynamicScene, Shape};
@@ -22,20 +22,16 @@ pub type SpringBlockScene = DynamicScene<SpringBlockShape>;
 
 impl SpringBlockScene {
     pub fn new(case: &Case, spec: &SpringBlockSpec) -> Result<Self, RunError> {
-        let body = LinearBody {
-            mass: vec![spec.mass],
-            stiffness: SymmetricMatrix::from_triplets(1, &[(0, 0, spec.stiffness)]),
-            load_rate: vec![spec.stiffness * spec.velocity],
-        };
+        let mut body = LinearBody::new(vec![spec.mass], SymmetricMatrix::from_triplets(1, &[(0, 0, spec.stiffness)]));
+        body.loads.push(Load { pattern: vec![spec.stiffness * spec.velocity], history: LoadHistory::Linear });
         // The spring pulls the block along v; friction on the block opposes it.
-        let contact = ContactBoundary {
-            params: case.friction.clone(),
-            points: vec![ContactPoint::single(0)],
-            traction_n: vec![spec.normal_traction],
-            base_velocity: 0.0,
-            base_ramp: 0.0,
-            loading_direction: if spec.velocity < 0.0 { 1.0 } else { -1.0 },
-        };
+        let point = ContactPoint::single(0, if spec.velocity < 0.0 { 1.0 } else { -1.0 });
+        let contact = ContactBoundary::single(
+            case.friction.clone(),
+            CounterBody::at_rest(),
+            vec![point],
+            vec![spec.normal_traction],
+        );
         let settings = Settings {
             theta: case.time.theta,
             velocity_scale: spec.velocity.abs().max(f64::MIN_POSITIVE),
@@ -63,7 +59,7 @@ impl Shape for SpringBlockShape {
     fn frame(&self, system: &System, needs: Needs, dt: f64) -> Frame {
         let s = &system.state;
         let sample = segment_sample(
-            &system.contact.params,
+            system.contact.params(0),
             std::iter::once((1.0, s.contact[0], s.slip_rate(0, dt))),
             needs.segment_state,
         );

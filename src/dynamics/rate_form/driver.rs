@@ -190,21 +190,23 @@ impl RungeKutta {
         // (`δ = μ_s f_n / α_t`) for u and p; for v, the velocity whose kinetic energy in the
         // contact's spring mode (`ω² = α_t w / m`) equals that spring's energy at `δ`, `ω δ`,
         // or the drive's velocity if larger; the static strength for f_t; the range
-        // `μ_s/μ_k - 1` for 1/R*.
-        let params = &dynamics.contact.params;
-        let strength = params.mu_s * dynamics.contact.traction_n.iter().fold(0.0_f64, |a, &b| a.max(b));
+        // `μ_s/μ_k - 1` for 1/R*. With several contacts, the largest of each.
+        let contact = &dynamics.contact;
+        let surfaces = || contact.surfaces.iter().map(|s| &s.params);
+        let alpha_t = surfaces().map(|p| p.alpha_t).fold(0.0_f64, f64::max);
+        let strength = (0..m).map(|k| contact.params(k).mu_s * contact.traction_n[k]).fold(0.0_f64, f64::max);
         let strength = if strength > 0.0 { strength } else { 1.0 };
-        let length = strength / params.alpha_t;
-        let omega = dynamics
-            .contact
+        let length = strength / alpha_t;
+        let omega = contact
             .points
             .iter()
-            .flat_map(|p| p.dofs.map(|d| (p.weight * params.alpha_t / dynamics.body.mass[d]).sqrt()))
+            .flat_map(|p| p.tangential.terms().map(|(d, _)| (p.weight * alpha_t / dynamics.body.mass[d]).sqrt()))
             .fold(0.0_f64, f64::max);
+        let structure_range = surfaces().map(|p| p.max_structure() - 1.0).fold(0.0_f64, f64::max);
         let mut scale = vec![length; n];
         scale.extend(std::iter::repeat_n(dynamics.settings.velocity_scale.max(omega * length), n));
         scale.extend(std::iter::repeat_n(strength, m));
-        scale.extend(std::iter::repeat_n((params.max_structure() - 1.0).max(f64::MIN_POSITIVE), m));
+        scale.extend(std::iter::repeat_n(structure_range.max(f64::MIN_POSITIVE), m));
         scale.extend(std::iter::repeat_n(length, m));
         let mut rate = vec![0.0; y.len()];
         let mut lambda = vec![0.0; m];

@@ -56,10 +56,12 @@ impl System {
     pub(crate) fn project(&self, y: &mut [f64]) -> bool {
         let n = self.body.dofs();
         let m = self.contact.points.len();
-        let params = &self.contact.params;
         let (traction, structure) = y[2 * n..2 * n + 2 * m].split_at_mut(m);
         let mut moved = false;
-        for ((f_t, z), &f_n) in traction.iter_mut().zip(structure.iter_mut()).zip(&self.contact.traction_n) {
+        for (k, ((f_t, z), &f_n)) in
+            traction.iter_mut().zip(structure.iter_mut()).zip(&self.contact.traction_n).enumerate()
+        {
+            let params = self.contact.params(k);
             let inside = z.clamp(1.0, params.max_structure());
             if inside != *z {
                 *z = inside;
@@ -89,12 +91,13 @@ impl System {
         du.copy_from_slice(v);
         // M v̇ = ḟ⁰ t - K u + Σ w Ñᵀ f_t - f_c⁰.
         self.body.stiffness.mul_vec(u, dv);
+        let load = self.body.load_at(t);
         for (i, a) in dv.iter_mut().enumerate() {
-            *a = t * self.body.load_rate[i] - *a - self.initial_contact_force[i];
+            *a = load.at(i) - *a - self.initial_contact_force[i];
         }
-        let params = &self.contact.params;
-        let base = self.contact.base_velocity_at(t);
+        let base = self.contact.base_velocities_along(t);
         for (i, point) in self.contact.points.iter().enumerate() {
+            let params = self.contact.params(i);
             point.scatter(point.weight * traction[i], dv);
             let state = ContactState {
                 traction_t: traction[i],
@@ -102,7 +105,7 @@ impl System {
                 structure: structure[i],
                 plastic_slip: slip[i],
             };
-            let r = law::tangential_rate(params, &state, point.interpolate(v) - base);
+            let r = law::tangential_rate(params, &state, point.interpolate(v) - base[i]);
             dtraction[i] = r.rate;
             dstructure[i] = law::structure_rate(params, structure[i], r.plastic_multiplier);
             dslip[i] = r.plastic_multiplier;

@@ -268,18 +268,18 @@ impl Sdirk4 {
     fn linearize(&mut self, dynamics: &mut System, t: f64, y: &[f64], g: f64) -> Result<(), StepError> {
         let n = dynamics.body.dofs();
         let m = dynamics.contact.points.len();
-        let params = &dynamics.contact.params;
         let v = &y[n..2 * n];
-        let base = dynamics.contact.base_velocity_at(t);
+        let base = dynamics.contact.base_velocities_along(t);
         let mut stiffness = Vec::with_capacity(m);
         for (i, point) in dynamics.contact.points.iter().enumerate() {
+            let params = dynamics.contact.params(i);
             let mut state = ContactState {
                 traction_t: y[2 * n + i],
                 traction_n: dynamics.contact.traction_n[i],
                 structure: y[2 * n + m + i],
                 plastic_slip: y[2 * n + 2 * m + i],
             };
-            let v_t = point.interpolate(v) - base;
+            let v_t = point.interpolate(v) - base[i];
             let mut linearization = PointLinearization::at(params, &state, v_t, g);
             if !linearization.is_finite() {
                 // With m < 1 or n < 1, eq. (4)'s powers have infinite slopes at the ends of
