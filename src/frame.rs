@@ -8,6 +8,10 @@ use std::fmt;
 
 use serde::{Deserialize, Serialize};
 
+pub use crate::frame::drawing::MeshDrawing;
+
+pub mod drawing;
+
 /// What the sinks of a run need in each frame.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Needs {
@@ -36,6 +40,8 @@ pub enum SceneKind {
     Point,
     SpringBlock,
     Block,
+    /// A body from a Gmsh mesh.
+    Mesh,
 }
 
 impl SceneKind {
@@ -45,7 +51,14 @@ impl SceneKind {
             SceneKind::Point => "point",
             SceneKind::SpringBlock => "spring_block",
             SceneKind::Block => "block",
+            SceneKind::Mesh => "mesh",
         }
+    }
+
+    /// Whether the scene is an elastic body of finite elements (the block, a mesh): contacts
+    /// along its boundary, forces per unit thickness, ruptures.
+    pub fn has_body(self) -> bool {
+        matches!(self, SceneKind::Block | SceneKind::Mesh)
     }
 
     /// Whether frames of this scene carry a block displacement and velocity.
@@ -55,10 +68,7 @@ impl SceneKind {
 
     /// Unit of the total friction force: per unit thickness for a block, per unit area else.
     pub fn force_unit(self) -> &'static str {
-        match self {
-            SceneKind::Block => "N/m",
-            _ => "Pa",
-        }
+        if self.has_body() { "N/m" } else { "Pa" }
     }
 }
 
@@ -72,18 +82,54 @@ impl fmt::Display for SceneKind {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Layout {
     pub kind: SceneKind,
-    /// Contact segments from the left, with their extent along x (m).
+    /// Contact segments in order along each contact, contact after contact, with their extent
+    /// along the contact's arc length (m; the block's x).
     pub segments: Vec<SegmentInfo>,
-    /// Contact-surface nodes from the left, with their x (m). Empty without a body.
+    /// Contact-surface nodes in the same order, with their arc length (m). Empty without a body.
     pub surface_nodes: Vec<NodeInfo>,
-    /// The mesh, for block scenes.
-    pub mesh: Option<crate::fem::StructuredMesh>,
+    /// The contacts, in order: how many of [`Self::segments`] and [`Self::surface_nodes`] each
+    /// holds. Empty in recordings from before several contacts: one contact holds them all.
+    #[serde(default)]
+    pub contacts: Vec<ContactInfo>,
+    /// What the spatial view draws of a body.
+    #[serde(default, deserialize_with = "crate::frame::drawing::either_form")]
+    pub mesh: Option<MeshDrawing>,
     /// The driving velocity (m/s).
     pub driving_velocity: f64,
     /// Whether the segments' slip rates are instantaneous values at each frame's time (the
     /// Runge–Kutta integrator's `Λ`) rather than means `Δp/Δt` over the step that led to it.
     #[serde(default)]
     pub instantaneous_slip_rate: bool,
+}
+
+/// One contact of a body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ContactInfo {
+    /// The name the case gives it (its mesh group's).
+    pub name: String,
+    /// Its segments and surface nodes (the next ones of [`Layout::segments`] and
+    /// [`Layout::surface_nodes`]).
+    pub segments: usize,
+    pub nodes: usize,
+}
+
+impl Layout {
+    /// The contacts, with the segment and node ranges each holds: [`Self::contacts`], or one
+    /// contact holding everything.
+    pub fn contact_ranges(&self) -> Vec<(String, std::ops::Range<usize>, std::ops::Range<usize>)> {
+        if self.contacts.is_empty() {
+            return vec![("contact".into(), 0..self.segments.len(), 0..self.surface_nodes.len())];
+        }
+        let (mut s, mut n) = (0, 0);
+        self.contacts
+            .iter()
+            .map(|c| {
+                let range = (c.name.clone(), s..s + c.segments, n..n + c.nodes);
+                (s, n) = (s + c.segments, n + c.nodes);
+                range
+            })
+            .collect()
+    }
 }
 
 /// A contact segment.
@@ -132,7 +178,7 @@ pub struct Frame {
     pub segments: Vec<SegmentSample>,
     /// `(u_x, u_y)` of the contact-surface nodes (m), when needed.
     pub surface_nodes: Vec<[f64; 2]>,
-    /// `(u_x, u_y)` of every mesh node (m), top row included, when needed.
+    /// `(u_x, u_y)` of every node the drawing uses ([`MeshDrawing::nodes`], m), when needed.
     pub mesh: Vec<[f64; 2]>,
     /// Total friction force `Σ w f_t` (N/m for a block, Pa for unit-area scenes).
     pub friction_force: f64,

@@ -7,20 +7,22 @@ mod common;
 
 use common::traction_errors_against_tsit5;
 use nalgebra::{DMatrix, SymmetricEigen};
+use slipfront::dynamics::Motion;
 use slipfront::dynamics::central::highest_frequency;
-use slipfront::fem::{Block, PlaneStrain, StructuredMesh, assemble};
+use slipfront::fem::{Assembled, Material, PlaneStrain};
 use slipfront::friction::FrictionParams;
+use slipfront::scene::block::block;
 
 #[test]
 fn lanczos_finds_the_highest_frequency_of_a_dense_eigensolver() {
     // A 30 × 6 block (372 unknowns, more than Lanczos' 100 steps) with the paper's contact:
     // the largest eigenvalue of M^{-1/2} (K + K_t) M^{-1/2}, formed densely and solved by
     // nalgebra's symmetric eigensolver, against `highest_frequency`.
-    let mesh = StructuredMesh { width: 10.0, height: 1.0, nx: 30, ny: 6 };
-    let material = PlaneStrain { youngs_modulus: 1.0e3, poisson_ratio: 0.0 };
+    let material = Material { elasticity: PlaneStrain { youngs_modulus: 1.0e3, poisson_ratio: 0.0 }, density: 1000.0 };
     let params = FrictionParams::paper();
     let alpha_t = params.alpha_t;
-    let Block { body, contact, .. } = assemble(mesh, material, 1000.0, params, |_| 500.0, 1e-3, 10.0);
+    let base = Motion::constant([1e-3, 0.0], 10.0);
+    let Assembled { body, contact, .. } = block(10.0, 1.0, 30, 6, material, params, &|_| 500.0, base);
     let n = body.dofs();
     let mut dense = DMatrix::<f64>::zeros(n, n);
     for (i, j, v) in body.stiffness.entries() {

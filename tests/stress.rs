@@ -33,6 +33,7 @@ impl Model {
     fn build(case: &Case) -> Result<Self, RunError> {
         Ok(match &case.scene {
             SceneSpec::Block(spec) => Model::Block(BlockScene::new(case, spec)?),
+            SceneSpec::Mesh(spec) => Model::Block(slipfront::scene::mesh::scene(case, spec)?),
             SceneSpec::SpringBlock(spec) => Model::SpringBlock(SpringBlockScene::new(case, spec)?),
             SceneSpec::Point(_) => panic!("the stress matrix runs dynamic scenes"),
         })

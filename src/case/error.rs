@@ -15,6 +15,8 @@ pub enum CaseError {
     Override(String),
     /// Parsed, but values break rules.
     Invalid(Vec<Violation>),
+    /// A file the case names (a mesh) is unreadable or refused; the message names it and where.
+    Mesh(String),
 }
 
 impl fmt::Display for CaseError {
@@ -23,6 +25,7 @@ impl fmt::Display for CaseError {
             CaseError::Io { path, message } => write!(f, "cannot read case file {path}: {message}"),
             CaseError::Parse(message) => write!(f, "{message}"),
             CaseError::Override(message) => write!(f, "{message}"),
+            CaseError::Mesh(message) => write!(f, "scene.file: {message}"),
             CaseError::Invalid(violations) => {
                 for (i, v) in violations.iter().enumerate() {
                     if i > 0 {

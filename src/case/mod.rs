@@ -5,7 +5,9 @@
 //! checks as the file.
 
 pub mod error;
+pub mod mesh;
 pub mod overrides;
+pub mod profile;
 pub mod spec;
 
 use std::fmt;
@@ -34,15 +36,21 @@ pub fn load(path: &Path, overrides: &[String]) -> Result<Case, CaseError> {
         )));
     }
     let text = String::from_utf8(bytes).map_err(|e| io(format!("it is not UTF-8 text ({e})")))?;
-    from_str(&text, overrides)
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    from_str_at(&text, overrides, dir)
 }
 
 /// The largest case file read (bytes). The shipped cases are under 5 kB; a probe list of every
 /// node of a 10 000-element mesh is under 1 MiB.
 pub const MAX_CASE_BYTES: u64 = 4 << 20;
 
-/// As [`load`], from text.
+/// As [`load`], from text, with the files it names (a mesh) relative to the working folder.
 pub fn from_str(text: &str, overrides: &[String]) -> Result<Case, CaseError> {
+    from_str_at(text, overrides, Path::new("."))
+}
+
+/// As [`load`], from text, with the files it names relative to `dir`.
+pub fn from_str_at(text: &str, overrides: &[String], dir: &Path) -> Result<Case, CaseError> {
     let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| CaseError::Parse(e.to_string()))?;
     for item in overrides {
         overrides::apply(&mut table, item)?;
@@ -55,6 +63,7 @@ pub fn from_str(text: &str, overrides: &[String]) -> Result<Case, CaseError> {
     };
     let mut case = case;
     case.source = spec::CaseSource { table, overrides: overrides.to_vec() };
+    case.load_files(dir)?;
     case.resolve();
     let mut violations = case.violations();
     if violations.is_empty() {
@@ -150,6 +159,26 @@ impl Case {
             );
             c.violations.remove(0)
         })
+    }
+
+    /// Reads the files the case names (a mesh) once its own rules hold, so that a broken rule
+    /// is reported before a file is read.
+    fn load_files(&mut self, dir: &Path) -> Result<(), CaseError> {
+        if !matches!(self.scene, SceneSpec::Mesh(_)) {
+            return Ok(());
+        }
+        let mut scene = Checker::new("scene");
+        self.scene.check(&mut scene);
+        if !scene.violations.is_empty() {
+            return Err(CaseError::Invalid(scene.violations));
+        }
+        let friction = match self.source.table.get("friction") {
+            Some(toml::Value::Table(table)) => table.clone(),
+            _ => toml::Table::new(),
+        };
+        let SceneSpec::Mesh(mesh) = &mut self.scene else { unreachable!("checked above") };
+        let violations = mesh.load(dir, &friction).map_err(CaseError::Mesh)?;
+        if violations.is_empty() { Ok(()) } else { Err(CaseError::Invalid(violations)) }
     }
 
     /// Resolves `time.integrator`: the method named, or `auto`'s choice for the scene and why

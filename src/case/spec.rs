@@ -2,6 +2,8 @@
 
 use serde::Deserialize;
 
+use crate::case::mesh::MeshSpec;
+use crate::case::profile;
 use crate::dynamics::method::{ACCURACY_RANGE, Choice, MAX_STEPS, Method};
 use crate::frame::Quantity;
 use crate::friction::FrictionParams;
@@ -237,8 +239,9 @@ fn scene_spec<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Scene
             "point" => read(table).map(SceneSpec::Point),
             "spring_block" => read(table).map(SceneSpec::SpringBlock),
             "block" => read(table).map(SceneSpec::Block),
+            "mesh" => read(table).map(SceneSpec::Mesh),
             other => Err(format!(
-                "{NESTED_KEY}kind: unknown variant `{other}`, expected one of `point`, `spring_block`, `block`"
+                "{NESTED_KEY}kind: unknown variant `{other}`, expected one of `point`, `spring_block`, `block`, `mesh`"
             )),
         }
     };
@@ -254,6 +257,8 @@ pub enum SceneSpec {
     SpringBlock(SpringBlockSpec),
     /// The plane-strain elastic block of the paper on the frictional base.
     Block(BlockSpec),
+    /// A plane-strain body from a Gmsh mesh, with its materials, boundaries and contacts.
+    Mesh(MeshSpec),
 }
 
 /// `kind = "point"`.
@@ -336,12 +341,8 @@ impl NormalTractionSpec {
     pub fn at(&self, x: f64, width: f64) -> f64 {
         match self {
             NormalTractionSpec::Uniform { value } => *value,
-            NormalTractionSpec::Linear { left, right } => left + (right - left) * (x / width),
-            NormalTractionSpec::Table { x: xs, value } => {
-                let k = xs.partition_point(|&xi| xi <= x).clamp(1, xs.len() - 1);
-                let (x0, x1, v0, v1) = (xs[k - 1], xs[k], value[k - 1], value[k]);
-                v0 + (v1 - v0) * (x - x0) / (x1 - x0)
-            }
+            NormalTractionSpec::Linear { left, right } => profile::linear(x, [0.0, width], [*left, *right]),
+            NormalTractionSpec::Table { x: xs, value } => profile::table(x, xs, value),
         }
     }
 
@@ -392,6 +393,7 @@ impl SceneSpec {
             SceneSpec::Block(b) => {
                 Some(b.nx.saturating_add(1).saturating_mul(b.ny.saturating_add(1)).saturating_mul(2))
             }
+            SceneSpec::Mesh(m) => Some(m.unknowns().unwrap_or(0)),
         }
     }
 
@@ -400,6 +402,16 @@ impl SceneSpec {
             SceneSpec::Point(_) => "point",
             SceneSpec::SpringBlock(_) => "spring_block",
             SceneSpec::Block(_) => "block",
+            SceneSpec::Mesh(_) => "mesh",
+        }
+    }
+
+    /// Contact-surface nodes and segments (the probes' and the selections' ranges).
+    pub fn contact_sizes(&self) -> (usize, usize) {
+        match self {
+            SceneSpec::Block(b) => (b.nx + 1, b.nx),
+            SceneSpec::Mesh(m) => m.contact_sizes(),
+            _ => (0, 1),
         }
     }
 
@@ -410,14 +422,17 @@ impl SceneSpec {
             SceneSpec::Point(p) => (p.normal_traction, "scene.normal_traction"),
             SceneSpec::SpringBlock(s) => (s.normal_traction, "scene.normal_traction"),
             SceneSpec::Block(b) => {
-                let mesh = crate::fem::StructuredMesh { width: b.width, height: b.height, nx: b.nx, ny: b.ny };
-                let weakest = mesh
-                    .contact_abscissae()
+                use crate::fem::curve::{gauss_shapes, interpolate};
+                let dx = b.width / b.nx as f64;
+                let weakest = (0..b.nx)
+                    .flat_map(|k| gauss_shapes().map(|shape| interpolate(k as f64 * dx, (k + 1) as f64 * dx, shape)))
                     .map(|x| b.normal_traction.at(x, b.width))
                     .filter(|f| *f > 0.0)
                     .fold(f64::INFINITY, f64::min);
                 (weakest, "scene.normal_traction")
             }
+            // Each contact's own f0 is checked where the mesh is loaded.
+            SceneSpec::Mesh(_) => return None,
         };
         (f_n > 0.0 && f_n.is_finite()).then_some((f_n, key))
     }
@@ -428,6 +443,7 @@ impl SceneSpec {
             SceneSpec::Point(p) => p.phases.iter().fold(0.0_f64, |m, ph| m.max(ph.velocity.abs())),
             SceneSpec::SpringBlock(s) => s.velocity.abs(),
             SceneSpec::Block(b) => b.base_velocity.abs(),
+            SceneSpec::Mesh(m) => m.driving_velocity(),
         };
         if v > 0.0 && v.is_finite() { v } else { 1e-3 }
     }
@@ -468,6 +484,7 @@ impl SceneSpec {
                 c.non_negative("base_ramp_time", b.base_ramp_time);
                 b.normal_traction.check(b.width, c);
             }
+            SceneSpec::Mesh(m) => m.check(c),
         }
     }
 }
@@ -508,10 +525,7 @@ pub struct Probe {
 
 impl ProbesSpec {
     pub fn check(&self, scene: &SceneSpec, c: &mut Checker<'_>) {
-        let (nodes, segments) = match scene {
-            SceneSpec::Block(b) => (b.nx + 1, b.nx),
-            _ => (0, 1),
-        };
+        let (nodes, segments) = scene.contact_sizes();
         for (list, key, count) in [(&self.nodes, "nodes", nodes), (&self.segments, "segments", segments)] {
             for (i, probe) in list.iter().enumerate() {
                 if probe.index >= count {
@@ -668,10 +682,7 @@ impl RecordSpec {
             c.fail("stick_every", 0, "must be at least 1");
         }
         c.positive("magnification", self.magnification);
-        let (nodes, segments) = match scene {
-            SceneSpec::Block(b) => (b.nx + 1, b.nx),
-            _ => (0, 1),
-        };
+        let (nodes, segments) = scene.contact_sizes();
         for (i, quantity) in self.quantities.iter().enumerate() {
             if let Some(first) = self.quantities[..i].iter().position(|q| q == quantity) {
                 c.fail(

@@ -12,7 +12,6 @@ use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, compact_recording, fail};
 use crate::cli::outputs::{self, Named};
 use crate::cli::run::{Reporting, fits_in_memory, report};
 use crate::cli::signals::Stop;
-use crate::frame::SceneKind;
 use crate::record::checkpoint::{self, Checkpoint, CheckpointInfo, SavedOutputs};
 use crate::record::schema::RecordingPlan;
 use crate::run::{Checkpoints, LoopOptions, RunMemory, run};
@@ -65,7 +64,7 @@ pub fn command(args: ResumeArgs) -> ExitCode {
         return fail(EXIT_INVALID, format!("cannot create output folder {}: {e}", out_dir.display()));
     }
     let outputs = Outputs::new(info, &out_dir);
-    let block = scene.layout().kind == SceneKind::Block;
+    let block = scene.layout().kind.has_body();
     let _locks = match outputs.claim(&args.checkpoint, block) {
         Ok(locks) => locks,
         Err(e) => return fail(EXIT_INVALID, e),

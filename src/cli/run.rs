@@ -11,7 +11,6 @@ use crate::cli::checkpoints::{self, Saver};
 use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, compact_recording, fail, print};
 use crate::cli::outputs::{self, Named, check_writable};
 use crate::cli::signals::Stop;
-use crate::frame::SceneKind;
 use crate::record::checkpoint::{CheckpointInfo, SavedCase, SavedOutputs};
 use crate::record::schema::RecordingPlan;
 use crate::run::{Checkpoints, LoopOptions, Outcome, RunMemory, run};
@@ -79,7 +78,7 @@ pub fn command(args: RunArgs) -> ExitCode {
         Ok(scene) => scene,
         Err(e) => return fail(EXIT_FAILED, e),
     };
-    let block = scene.layout().kind == SceneKind::Block;
+    let block = scene.layout().kind.has_body();
     let _locks = match outputs.claim(&args, block) {
         Ok(locks) => locks,
         Err(e) => return fail(EXIT_INVALID, e),

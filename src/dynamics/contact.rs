@@ -1,8 +1,8 @@
 //! The contact force boundary `S_c`: Gauss points that carry friction states (paper §2.2).
 //!
-//! A contact is a curve of the body pressed against a rigid counter body (the paper's main
-//! body). At each Gauss point the unit tangent `t` and normal `n` come from the curve: `n`
-//! points from the counter body into the body, `t` is `n` turned clockwise by a right angle,
+//! A contact is a curve of the body (the paper's counter body) pressed against a rigid main
+//! body (the moving base). At each Gauss point the unit tangent `t` and normal `n` come from the curve: `n`
+//! points from the main body into the body, `t` is `n` turned clockwise by a right angle,
 //! so the body lies on the left of `t` (docs/model.md, "Bodies, normal and signs"). Every
 //! traction and slip of the friction law is along this local frame.
 
@@ -115,9 +115,9 @@ impl ContactPoint {
     }
 }
 
-/// How a contact's counter body moves.
+/// How a contact's main body moves.
 #[derive(Debug, Clone, PartialEq)]
-pub struct CounterBody {
+pub struct MainBody {
     /// Its velocity history (m/s).
     pub motion: Motion,
     /// Whether [`Self::motion`]'s first component is a speed along each point's tangent (the
@@ -125,13 +125,13 @@ pub struct CounterBody {
     pub along_tangent: bool,
 }
 
-impl CounterBody {
+impl MainBody {
     /// Held still.
     pub fn at_rest() -> Self {
         Self { motion: Motion::at_rest(), along_tangent: true }
     }
 
-    /// The component of a velocity or displacement `value` of the counter body along `point`'s
+    /// The component of a velocity or displacement `value` of the main body along `point`'s
     /// tangent.
     #[inline]
     pub fn along(&self, point: &ContactPoint, value: [f64; 2]) -> f64 {
@@ -139,11 +139,11 @@ impl CounterBody {
     }
 }
 
-/// One frictional contact: its law and its counter body.
+/// One frictional contact: its law and its main body.
 #[derive(Debug, Clone)]
 pub struct ContactSurface {
     pub params: FrictionParams,
-    pub counter_body: CounterBody,
+    pub main_body: MainBody,
 }
 
 /// The frictional boundary: its surfaces, their points and the points' normal tractions.
@@ -156,14 +156,14 @@ pub struct ContactBoundary {
 }
 
 impl ContactBoundary {
-    /// One surface of law `params` and counter body `counter_body` holding every point.
+    /// One surface of law `params` and main body `main_body` holding every point.
     pub fn single(
         params: FrictionParams,
-        counter_body: CounterBody,
+        main_body: MainBody,
         points: Vec<ContactPoint>,
         traction_n: Vec<f64>,
     ) -> Self {
-        Self { surfaces: vec![ContactSurface { params, counter_body }], points, traction_n }
+        Self { surfaces: vec![ContactSurface { params, main_body }], points, traction_n }
     }
 
     /// The friction law of point `k`.
@@ -174,7 +174,7 @@ impl ContactBoundary {
 
     /// Each surface's counter-body velocity at `t`, for [`Self::base_along`].
     pub fn base_velocities(&self, t: f64) -> Vec<[f64; 2]> {
-        self.surfaces.iter().map(|s| s.counter_body.motion.velocity_at(t)).collect()
+        self.surfaces.iter().map(|s| s.main_body.motion.velocity_at(t)).collect()
     }
 
     /// Each surface's counter-body displacement from `t0` to `t1`, for [`Self::base_along`]
@@ -183,34 +183,34 @@ impl ContactBoundary {
         self.surfaces
             .iter()
             .map(|s| {
-                let (a, b) = (s.counter_body.motion.displacement_at(t1), s.counter_body.motion.displacement_at(t0));
+                let (a, b) = (s.main_body.motion.displacement_at(t1), s.main_body.motion.displacement_at(t0));
                 [a[0] - b[0], a[1] - b[1]]
             })
             .collect()
     }
 
-    /// The counter body's velocity (or displacement) along point `k`'s tangent, from the
+    /// The main body's velocity (or displacement) along point `k`'s tangent, from the
     /// surfaces' values `per_surface` ([`Self::base_velocities`], [`Self::base_increments`]).
     #[inline]
     pub fn base_along(&self, k: usize, per_surface: &[[f64; 2]]) -> f64 {
         let point = &self.points[k];
-        self.surfaces[point.surface].counter_body.along(point, per_surface[point.surface])
+        self.surfaces[point.surface].main_body.along(point, per_surface[point.surface])
     }
 
-    /// The counter bodies' displacement from `t0` to `t1` along each point's tangent (m).
+    /// The main bodies' displacement from `t0` to `t1` along each point's tangent (m).
     pub fn base_slips(&self, t0: f64, t1: f64) -> Vec<f64> {
         let bases = self.base_increments(t0, t1);
         (0..self.points.len()).map(|k| self.base_along(k, &bases)).collect()
     }
 
-    /// The counter bodies' velocity at `t` along each point's tangent (m/s).
+    /// The main bodies' velocity at `t` along each point's tangent (m/s).
     pub fn base_velocities_along(&self, t: f64) -> Vec<f64> {
         let bases = self.base_velocities(t);
         (0..self.points.len()).map(|k| self.base_along(k, &bases)).collect()
     }
 
-    /// The largest speed of any counter body (m/s).
+    /// The largest speed of any main body (m/s).
     pub fn largest_base_speed(&self) -> f64 {
-        self.surfaces.iter().map(|s| s.counter_body.motion.largest_speed()).fold(0.0, f64::max)
+        self.surfaces.iter().map(|s| s.main_body.motion.largest_speed()).fold(0.0, f64::max)
     }
 }

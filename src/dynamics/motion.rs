@@ -1,6 +1,6 @@
 //! Prescribed motion: a velocity history in phases, every change smoothed over a ramp.
 //!
-//! The counter body of a contact (the paper's main body, §3.2's moving base) and a boundary with
+//! The main body of a contact (§3.2's moving base) and a boundary with
 //! a prescribed velocity (eq. 10's `S_v`) move this way. A history starts from rest; each phase
 //! holds a velocity for a duration, and each change of velocity, the first from rest included,
 //! is spread over `ramp` seconds by the polynomial `s³ (10 - 15 s + 6 s²)`, `s = τ/ramp`, whose

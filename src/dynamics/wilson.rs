@@ -91,7 +91,7 @@ struct CondensedSystem<'a> {
     restarts: &'a [Option<Restart>],
     condensation: &'a Condensation,
     tau: f64,
-    /// How far the counter body moves over `τ` along each point's tangent.
+    /// How far the main body moves over `τ` along each point's tangent.
     base: Vec<f64>,
     /// `Pᵀ w`.
     free_contact: Vec<f64>,

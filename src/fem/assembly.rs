@@ -1,106 +1,358 @@
-//! Assembly of the block of the paper's §3.2 into `M`, `K` and the contact boundary.
+//! Assembly of a body into the equation of motion (14): lumped `M`, `K`, the external loads and
+//! the contact boundary `S_c` (paper §2.2).
+//!
+//! Every body goes through here, the paper's block included ([`crate::fem::rectangle`]): the
+//! cells in the mesh's canonical order, each element matrix computed from its corners relative
+//! to its first, so that a mesh's numbering and its position in the plane do not change the
+//! sums; then each contact's normal springs, segment by segment along its chain.
 
 use nalgebra::Vector2;
 
-use crate::dynamics::{ContactBoundary, ContactPoint, CounterBody, LinearBody, Motion, Projection};
-use crate::fem::element::{GAUSS_2, PlaneStrain, lumped_mass, stiffness};
-use crate::fem::mesh::StructuredMesh;
+use crate::dynamics::{
+    ContactBoundary, ContactPoint, ContactSurface, LinearBody, Load, LoadHistory, MainBody, Motion, Projection,
+};
+use crate::fem::body_mesh::{Cell, Mesh};
+use crate::fem::curve::{CurvePoint, Segment, segments};
+use crate::fem::element::{PlaneStrain, lumped_mass, signed_double_area, stiffness, triangle_stiffness};
 use crate::friction::FrictionParams;
 use crate::linalg::sparse::SymmetricMatrix;
 
-/// The assembled block: the linear body and its frictional bottom.
-#[derive(Debug, Clone)]
-pub struct Block {
-    pub mesh: StructuredMesh,
-    pub body: LinearBody,
-    pub contact: ContactBoundary,
+/// What a region of the body is made of.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    pub elasticity: PlaneStrain,
+    /// `ρ` (kg/m³).
+    pub density: f64,
 }
 
-impl Block {
-    /// Contact points of segment `k` (the bottom edge of element `(k, 0)`): two Gauss points.
-    pub fn segment_points(&self, segment: usize) -> std::ops::Range<usize> {
-        2 * segment..2 * segment + 2
+/// A boundary whose displacement is prescribed (eq. 10's `S_v`): the `components` (x, y) of
+/// its `nodes` follow `motion` from their initial position; at rest, they are fixed.
+#[derive(Debug, Clone)]
+pub struct Constraint {
+    pub name: String,
+    pub nodes: Vec<usize>,
+    pub components: [bool; 2],
+    pub motion: Motion,
+}
+
+/// A traction prescribed on a chain of boundary edges (eq. 10's `S_t`).
+#[derive(Debug, Clone)]
+pub struct TractionLoad {
+    pub chain: Vec<usize>,
+    pub traction: Traction,
+    /// The traction rises smoothly from 0 over this time (s); 0 applies it at once.
+    pub ramp: f64,
+}
+
+/// The traction of a [`TractionLoad`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Traction {
+    /// A vector in x and y (Pa).
+    Vector([f64; 2]),
+    /// A pressure (Pa), pushing along the inward normal.
+    Pressure(f64),
+}
+
+/// A frictional contact along a chain of boundary edges, against a rigid main body.
+pub struct ContactDefinition<'a> {
+    pub name: String,
+    pub chain: Vec<usize>,
+    pub params: FrictionParams,
+    pub main_body: MainBody,
+    /// The normal traction `f_n` (Pa) at a Gauss point, held constant.
+    pub normal_traction: Box<dyn Fn(CurvePoint) -> f64 + 'a>,
+}
+
+/// A body to assemble: its mesh, each cell's material, its boundaries and contacts.
+pub struct BodyDefinition<'a> {
+    pub mesh: &'a Mesh,
+    /// The material of each cell, in the mesh's order.
+    pub materials: Vec<Material>,
+    pub constraints: Vec<Constraint>,
+    pub tractions: Vec<TractionLoad>,
+    pub contacts: Vec<ContactDefinition<'a>>,
+}
+
+/// Where each node's displacement lives: a free unknown, or a prescribed motion.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NodeDof {
+    Free(usize),
+    /// Following constraint `k`'s motion ([`Dofs::motions`]).
+    Prescribed(usize),
+}
+
+/// The degrees of freedom of every node's x and y, and the motions of the prescribed ones.
+#[derive(Debug, Clone)]
+pub struct Dofs {
+    pub nodes: Vec<[NodeDof; 2]>,
+    pub motions: Vec<Motion>,
+    pub free: usize,
+}
+
+impl Dofs {
+    /// The displacement of `node` at `t` (m) for the free unknowns `u`.
+    pub fn displacement(&self, node: usize, u: &[f64], t: f64) -> [f64; 2] {
+        let component = |c: usize| match &self.nodes[node][c] {
+            NodeDof::Free(i) => u[*i],
+            NodeDof::Prescribed(k) => self.motions[*k].displacement_at(t)[c],
+        };
+        [component(0), component(1)]
+    }
+
+    fn free(&self, node: usize, component: usize) -> Option<usize> {
+        match self.nodes[node][component] {
+            NodeDof::Free(i) => Some(i),
+            NodeDof::Prescribed(_) => None,
+        }
     }
 }
 
-/// Assembles the block. The top row is fixed; the bottom edge is the contact boundary with
-/// two Gauss points per segment, each with its own friction state and the normal traction
-/// `normal_traction(x)`; the base accelerates smoothly from rest over `base_ramp` seconds to
-/// `base_velocity` along x.
-///
-/// Normal direction: the base is rigid, and the contact's elastic normal modulus `α_n` (the
-/// normal part of `C^e`) ties the bottom to it, so a change of normal displacement changes the
-/// normal traction by `-α_n Δu_y`. This spring is linear and joins `K`. The friction law sees
-/// the prescribed normal traction, held constant in time as the paper assumes (§3.2), so that
-/// the initial distribution alone governs the frictional strength. Without the spring the
-/// bottom could sink into the base, and the free ends of the block would rotate.
-pub fn assemble(
-    mesh: StructuredMesh,
-    material: PlaneStrain,
-    density: f64,
-    params: FrictionParams,
-    normal_traction: impl Fn(f64) -> f64,
-    base_velocity: f64,
-    base_ramp: f64,
-) -> Block {
-    let (dx, dy) = (mesh.dx(), mesh.dy());
-    // All elements are the same rectangle: one element matrix serves.
-    let corners = [Vector2::new(0.0, 0.0), Vector2::new(dx, 0.0), Vector2::new(dx, dy), Vector2::new(0.0, dy)];
-    let ke = stiffness(&material, &corners);
-    let n = mesh.dofs();
+/// The assembled body.
+pub struct Assembled {
+    pub body: LinearBody,
+    pub contact: ContactBoundary,
+    pub dofs: Dofs,
+    /// Each contact's segments, in order along its chain; contact points `2k`, `2k + 1` of
+    /// the boundary belong to the `k`-th segment counted over all contacts.
+    pub contacts: Vec<Vec<Segment>>,
+}
+
+/// Why a body cannot be assembled: conflicting boundaries, a moving boundary on a contact.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AssemblyError(pub String);
+
+impl std::fmt::Display for AssemblyError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+/// Checks what [`assemble`] refuses without assembling: boundaries that prescribe a node's
+/// motion differently, a contact node that a boundary moves.
+pub fn check(definition: &BodyDefinition) -> Result<(), AssemblyError> {
+    let dofs = number(definition)?;
+    for contact in &definition.contacts {
+        refuse_moving_nodes(contact, &dofs, &definition.mesh.nodes)?;
+    }
+    Ok(())
+}
+
+/// Assembles `definition` (module documentation).
+pub fn assemble(definition: &BodyDefinition) -> Result<Assembled, AssemblyError> {
+    let mesh = definition.mesh;
+    let dofs = number(definition)?;
+    let n = dofs.free;
     let mut mass = vec![0.0; n];
-    let node_mass = lumped_mass(density, dx, dy);
-    let mut triplets = Vec::with_capacity(64 * mesh.nx * mesh.ny);
-    for j in 0..mesh.ny {
-        for i in 0..mesh.nx {
-            let nodes = mesh.element_nodes(i, j);
-            let dofs: Vec<Option<usize>> = nodes
-                .iter()
-                .flat_map(|&id| match mesh.node_dofs(id) {
-                    Some([x, y]) => [Some(x), Some(y)],
-                    None => [None, None],
-                })
-                .collect();
-            for (a, da) in dofs.iter().enumerate() {
-                let Some(row) = *da else { continue };
-                mass[row] += node_mass;
-                for (b, db) in dofs.iter().enumerate() {
-                    if let Some(col) = *db {
-                        triplets.push((row, col, ke[(a, b)]));
+    let mut triplets = Vec::with_capacity(64 * mesh.cells.len());
+    // -K_fp per prescribed component that moves, summed over the constraint's nodes.
+    let mut moving: Vec<[Option<Vec<f64>>; 2]> = definition
+        .constraints
+        .iter()
+        .map(|c| c.components.map(|on| (on && !c.motion.is_at_rest()).then(|| vec![0.0; n])))
+        .collect();
+    for (cell, material) in mesh.cells.iter().zip(&definition.materials) {
+        let (matrix, node_mass) = element(cell, &mesh.nodes, material);
+        let nodes = cell.nodes();
+        let dof_of = |a: usize| &dofs.nodes[nodes[a / 2]][a % 2];
+        for a in 0..2 * nodes.len() {
+            let NodeDof::Free(row) = *dof_of(a) else { continue };
+            mass[row] += node_mass;
+            for b in 0..2 * nodes.len() {
+                match *dof_of(b) {
+                    NodeDof::Free(col) => triplets.push((row, col, matrix[(a, b)])),
+                    NodeDof::Prescribed(k) => {
+                        if let Some(pattern) = &mut moving[k][b % 2] {
+                            pattern[row] -= matrix[(a, b)];
+                        }
                     }
                 }
             }
         }
     }
-    let mut points = Vec::with_capacity(2 * mesh.nx);
-    let mut tractions = Vec::with_capacity(2 * mesh.nx);
-    for k in 0..mesh.nx {
-        let [left_x, left_y] = mesh.node_dofs(mesh.surface_node(k)).expect("bottom nodes are free");
-        let [right_x, right_y] = mesh.node_dofs(mesh.surface_node(k + 1)).expect("bottom nodes are free");
-        for &xi in &GAUSS_2 {
-            let x = mesh.contact_point_x(k, xi);
-            let shape = [0.5 * (1.0 - xi), 0.5 * (1.0 + xi)];
-            let weight = 0.5 * dx;
-            points.push(ContactPoint {
-                tangential: Projection::new([(left_x, shape[0]), (right_x, shape[1])]),
-                normal: Projection::new([(left_y, shape[0]), (right_y, shape[1])]),
-                weight,
-                surface: 0,
-                tangent: [1.0, 0.0],
-                loading_direction: if base_velocity < 0.0 { -1.0 } else { 1.0 },
-            });
-            tractions.push(normal_traction(x));
-            // Normal spring: α_n ∫ Ñᵀ Ñ ds on the y degrees of freedom.
-            let normal = [left_y, right_y];
-            for a in 0..2 {
-                for b in 0..2 {
-                    triplets.push((normal[a], normal[b], params.alpha_n * weight * shape[a] * shape[b]));
+    let (contact, contacts) = contact_boundary(definition, &dofs, &mut triplets)?;
+    let mut body = LinearBody::new(mass, SymmetricMatrix::from_triplets(n, &triplets));
+    for (constraint, patterns) in definition.constraints.iter().zip(moving) {
+        for (component, pattern) in patterns.into_iter().enumerate() {
+            if let Some(pattern) = pattern {
+                let history = LoadHistory::Displacement { motion: constraint.motion.clone(), component };
+                body.loads.push(Load { pattern, history });
+            }
+        }
+    }
+    for load in &definition.tractions {
+        body.loads.push(traction_load(load, &mesh.nodes, &dofs));
+    }
+    Ok(Assembled { body, contact, dofs, contacts })
+}
+
+/// The element stiffness (degrees of freedom `(x₀, y₀, x₁, y₁, …)`) and the lumped mass per
+/// corner of `cell`.
+fn element(cell: &Cell, coordinates: &[[f64; 2]], material: &Material) -> (nalgebra::DMatrix<f64>, f64) {
+    let nodes = cell.nodes();
+    let origin = coordinates[nodes[0]];
+    let local = |a: usize| Vector2::new(coordinates[nodes[a]][0] - origin[0], coordinates[nodes[a]][1] - origin[1]);
+    match cell {
+        Cell::Quad(_) => {
+            let corners = [local(0), local(1), local(2), local(3)];
+            let area = 0.5 * signed_double_area(&corners);
+            let k = stiffness(&material.elasticity, &corners);
+            (nalgebra::DMatrix::from_column_slice(8, 8, k.as_slice()), lumped_mass(material.density, area, 4))
+        }
+        Cell::Triangle(_) => {
+            let corners = [local(0), local(1), local(2)];
+            let area = 0.5 * signed_double_area(&corners);
+            let k = triangle_stiffness(&material.elasticity, &corners);
+            (nalgebra::DMatrix::from_column_slice(6, 6, k.as_slice()), lumped_mass(material.density, area, 3))
+        }
+    }
+}
+
+/// Numbers the free degrees of freedom node by node, x before y, and records which constraint
+/// holds each prescribed one. Two boundaries that prescribe one component of a node differently
+/// are refused.
+fn number(definition: &BodyDefinition) -> Result<Dofs, AssemblyError> {
+    let mesh = definition.mesh;
+    let mut holder: Vec<[Option<usize>; 2]> = vec![[None, None]; mesh.nodes.len()];
+    for (k, constraint) in definition.constraints.iter().enumerate() {
+        for &node in &constraint.nodes {
+            for c in (0..2).filter(|&c| constraint.components[c]) {
+                match holder[node][c] {
+                    Some(other) if definition.constraints[other].motion != constraint.motion => {
+                        let [x, y] = mesh.nodes[node];
+                        return Err(AssemblyError(format!(
+                            "the node at ({}, {}) is on boundaries \"{}\" and \"{}\", which prescribe its {} motion \
+                             differently; make the groups share no node, or prescribe the same motion",
+                            crate::validate::shortest(x),
+                            crate::validate::shortest(y),
+                            definition.constraints[other].name,
+                            constraint.name,
+                            ["x", "y"][c]
+                        )));
+                    }
+                    Some(_) => {}
+                    None => holder[node][c] = Some(k),
                 }
             }
         }
     }
-    let body = LinearBody::new(mass, SymmetricMatrix::from_triplets(n, &triplets));
-    let counter_body = CounterBody { motion: Motion::constant([base_velocity, 0.0], base_ramp), along_tangent: true };
-    let contact = ContactBoundary::single(params, counter_body, points, tractions);
-    Block { mesh, body, contact }
+    let mut free = 0;
+    let nodes = holder
+        .iter()
+        .map(|held| {
+            held.map(|h| match h {
+                Some(k) => NodeDof::Prescribed(k),
+                None => {
+                    free += 1;
+                    NodeDof::Free(free - 1)
+                }
+            })
+        })
+        .collect();
+    Ok(Dofs { nodes, motions: definition.constraints.iter().map(|c| c.motion.clone()).collect(), free })
+}
+
+/// The contact points of every contact (two Gauss points per segment, eq. 13) and the normal
+/// springs `α_n ∫ (n·Ñ)ᵀ (n·Ñ) ds` they add to `K`.
+///
+/// Normal direction: the main body is rigid, and the contact's elastic normal modulus `α_n`
+/// (the normal part of `C^e`) ties the body to it, so a change of normal displacement changes
+/// the normal traction by `-α_n Δu_n`. This spring is linear and joins `K`. The friction law
+/// sees the prescribed normal traction, held constant in time as the paper assumes (§3.2), so
+/// that the initial distribution alone governs the frictional strength.
+fn contact_boundary(
+    definition: &BodyDefinition,
+    dofs: &Dofs,
+    triplets: &mut Vec<(usize, usize, f64)>,
+) -> Result<(ContactBoundary, Vec<Vec<Segment>>), AssemblyError> {
+    let coordinates = &definition.mesh.nodes;
+    let mut boundary = ContactBoundary { surfaces: Vec::new(), points: Vec::new(), traction_n: Vec::new() };
+    let mut all = Vec::new();
+    for (surface, contact) in definition.contacts.iter().enumerate() {
+        refuse_moving_nodes(contact, dofs, coordinates)?;
+        let chain = segments(&contact.chain, coordinates);
+        for segment in &chain {
+            let [a, b] = segment.nodes;
+            for gauss in segment.gauss_points(coordinates) {
+                let [na, nb] = gauss.shape;
+                let along = |direction: [f64; 2]| {
+                    Projection::new(
+                        [(a, 0, na), (a, 1, na), (b, 0, nb), (b, 1, nb)]
+                            .into_iter()
+                            .filter_map(|(node, c, shape)| dofs.free(node, c).map(|dof| (dof, direction[c] * shape))),
+                    )
+                };
+                let normal = along(segment.normal);
+                for (da, ca) in normal.terms() {
+                    for (db, cb) in normal.terms() {
+                        triplets.push((da, db, contact.params.alpha_n * gauss.weight * ca * cb));
+                    }
+                }
+                boundary.points.push(ContactPoint {
+                    tangential: along(segment.tangent),
+                    normal,
+                    weight: gauss.weight,
+                    surface,
+                    tangent: segment.tangent,
+                    loading_direction: loading_direction(&contact.main_body, segment.tangent),
+                });
+                boundary.traction_n.push((contact.normal_traction)(gauss.position));
+            }
+        }
+        boundary.surfaces.push(ContactSurface { params: contact.params.clone(), main_body: contact.main_body.clone() });
+        all.push(chain);
+    }
+    Ok((boundary, all))
+}
+
+/// A node of a contact may be fixed (the contact sees it still), but not moved by a boundary:
+/// its prescribed motion would have to enter the contact's slip.
+fn refuse_moving_nodes(
+    contact: &ContactDefinition,
+    dofs: &Dofs,
+    coordinates: &[[f64; 2]],
+) -> Result<(), AssemblyError> {
+    for &node in &contact.chain {
+        for held in &dofs.nodes[node] {
+            if let NodeDof::Prescribed(k) = held
+                && !dofs.motions[*k].is_at_rest()
+            {
+                let [x, y] = coordinates[node];
+                return Err(AssemblyError(format!(
+                    "the node at ({}, {}) is on contact \"{}\" and on a boundary that moves it; a contact's nodes may \
+                     be fixed but not moved: make the groups share no node",
+                    crate::validate::shortest(x),
+                    crate::validate::shortest(y),
+                    contact.name
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The sign of the initial tangential traction `f0`: the way the main body first drags the
+/// body along `tangent` (+1 where it does not move along it).
+fn loading_direction(main_body: &MainBody, tangent: [f64; 2]) -> f64 {
+    let first = main_body.motion.first_velocity().unwrap_or([0.0, 0.0]);
+    let along = if main_body.along_tangent { first[0] } else { tangent[0] * first[0] + tangent[1] * first[1] };
+    if along < 0.0 { -1.0 } else { 1.0 }
+}
+
+/// `∫ Nᵀ t̄ ds` over the chain's segments: each end of a segment of length `L` carries `t̄ L/2`.
+fn traction_load(load: &TractionLoad, coordinates: &[[f64; 2]], dofs: &Dofs) -> Load {
+    let mut pattern = vec![0.0; dofs.free];
+    for segment in segments(&load.chain, coordinates) {
+        let traction = match load.traction {
+            Traction::Vector(t) => t,
+            Traction::Pressure(p) => [p * segment.normal[0], p * segment.normal[1]],
+        };
+        for node in segment.nodes {
+            for (c, t) in traction.iter().enumerate() {
+                if let Some(dof) = dofs.free(node, c) {
+                    pattern[dof] += 0.5 * segment.length * t;
+                }
+            }
+        }
+    }
+    Load { pattern, history: LoadHistory::Ramp { ramp: load.ramp } }
 }

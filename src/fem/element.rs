@@ -1,4 +1,5 @@
-//! The four-node isoparametric plane-strain element (Q4) with 2 × 2 Gauss integration.
+//! The plane-strain elements: the four-node isoparametric quadrilateral (Q4) with 2 × 2 Gauss
+//! integration, and the three-node constant-strain triangle (T3); their lumped masses.
 
 use nalgebra::{Matrix3, SMatrix, Vector2};
 
@@ -67,7 +68,33 @@ pub fn stiffness(material: &PlaneStrain, coords: &[Vector2<f64>; 4]) -> SMatrix<
     k
 }
 
-/// Row-sum (lumped) mass per corner node of a rectangle `dx × dy`: `ρ dx dy / 4`.
-pub fn lumped_mass(density: f64, dx: f64, dy: f64) -> f64 {
-    0.25 * density * dx * dy
+/// Element stiffness of the constant-strain triangle (per unit thickness) for corners
+/// `coords` (counter-clockwise), degrees of freedom ordered `(x₀, y₀, x₁, y₁, x₂, y₂)`:
+/// `K_e = Bᵀ D B A` with the constant `B` of the linear shape functions.
+pub fn triangle_stiffness(material: &PlaneStrain, coords: &[Vector2<f64>; 3]) -> SMatrix<f64, 6, 6> {
+    let twice_area = signed_double_area(coords);
+    let mut b = SMatrix::<f64, 3, 6>::zeros();
+    for a in 0..3 {
+        let (j, k) = ((a + 1) % 3, (a + 2) % 3);
+        // ∂N_a/∂x = (y_j - y_k)/2A, ∂N_a/∂y = (x_k - x_j)/2A.
+        let dx = (coords[j].y - coords[k].y) / twice_area;
+        let dy = (coords[k].x - coords[j].x) / twice_area;
+        b[(0, 2 * a)] = dx;
+        b[(1, 2 * a + 1)] = dy;
+        b[(2, 2 * a)] = dy;
+        b[(2, 2 * a + 1)] = dx;
+    }
+    b.transpose() * material.elasticity() * b * (0.5 * twice_area)
+}
+
+/// Twice the signed area of a polygon (shoelace formula): positive when counter-clockwise.
+pub fn signed_double_area(coords: &[Vector2<f64>]) -> f64 {
+    let n = coords.len();
+    (0..n).map(|a| coords[a].x * coords[(a + 1) % n].y - coords[(a + 1) % n].x * coords[a].y).sum()
+}
+
+/// Lumped mass per corner node of a cell of `area` and `corners` nodes: `ρ A / corners`. For a
+/// triangle and a parallelogram this is the row sum of the consistent mass matrix.
+pub fn lumped_mass(density: f64, area: f64, corners: usize) -> f64 {
+    density / corners as f64 * area
 }

@@ -12,7 +12,6 @@ use std::path::Path;
 
 use serde::Deserialize;
 
-use crate::frame::SceneKind;
 use crate::inspect::{Recording, Series};
 use crate::record::digest::SeriesDigest;
 use crate::record::schema::{self, RunEnding, RunInfo};
@@ -369,7 +368,7 @@ fn check_spatial(recording: &Recording, info: &RunInfo, early: bool, report: &mu
             entities.extend([schema::SPACETIME_IMAGE, schema::SPACETIME_NOW]);
         }
         entities.push(schema::CONTACT_STATE);
-        if info.kind == SceneKind::Block && info.segments > 1 {
+        if info.kind.has_body() && info.segments > 1 {
             entities.push(schema::PROFILE_TRACTION);
         }
         for entity in entities {
@@ -396,7 +395,7 @@ fn check_blueprint(recording: &Recording, report: &mut Report) {
 fn check_events(recording: &Recording, info: &RunInfo, e: &RunEnding, expect: &Expectations, report: &mut Report) {
     let problems = &mut report.problems;
     let logged = recording.text_logs.iter().filter(|(entity, _, _)| entity == schema::EVENTS).count();
-    let expected = e.slip_events + if info.kind == SceneKind::Block { e.ruptures } else { 0 };
+    let expected = e.slip_events + if info.kind.has_body() { e.ruptures } else { 0 };
     if logged != expected {
         problems.push(format!("{logged} entries in the event log, the catalog holds {expected}"));
     }

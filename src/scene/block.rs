@@ -1,13 +1,20 @@
 //! `kind = "block"`: the paper's §3 analysis, a plane-strain elastic block whose bottom is the
-//! frictional contact against a moving rigid base.
+//! frictional contact against a moving rigid base. The block is a mesh
+//! ([`crate::fem::rectangle`]) with its top fixed and its bottom the contact, assembled and
+//! stepped as any body ([`crate::scene::body`]).
 
 use crate::case::{BlockSpec, Case};
-use crate::dynamics::{LinearSolver, Settings, System, condensation_pays};
-use crate::fem::{Block, PlaneStrain, StructuredMesh, assemble};
-use crate::frame::{Frame, Layout, Needs, NodeInfo, SceneKind, SegmentInfo};
-use crate::scene::dynamic::{DynamicScene, Shape};
-use crate::scene::interface::{RunError, step_error};
-use crate::scene::sample::segment_sample;
+use crate::dynamics::{MainBody, Motion, condensation_pays};
+use crate::fem::curve::CurvePoint;
+use crate::fem::rectangle::{BOTTOM, TOP};
+use crate::fem::{
+    Assembled, BodyDefinition, Constraint, ContactDefinition, Material, PlaneStrain, assemble, rectangle,
+};
+use crate::frame::{MeshDrawing, SceneKind};
+use crate::friction::FrictionParams;
+use crate::scene::body::{BodyScene, Presentation, build};
+use crate::scene::drawing::MOST_LINES;
+use crate::scene::interface::RunError;
 
 /// Peak memory (bytes) a block of `nx × ny` elements is expected to need: a base of 16 MB plus
 /// 200 B × log2(n) per degree of freedom `n = 2 (nx+1)(ny+1)`, the sparse factor's fill growing
@@ -23,119 +30,65 @@ pub fn estimated_memory(nx: usize, ny: usize) -> (f64, f64) {
     (dofs, 16.0e6 + 200.0 * dofs * dofs.log2() + condensed)
 }
 
-/// How the block's contact points form segments (two Gauss points each), and what a frame
-/// shows of it: segments, the contact surface's nodes and the whole mesh.
-pub struct BlockShape {
-    mesh: StructuredMesh,
-}
-
-/// The paper's block.
-pub type BlockScene = DynamicScene<BlockShape>;
+/// The paper's block as a scene.
+pub type BlockScene = BodyScene;
 
 impl BlockScene {
+    /// The block of `spec`: a rectangle mesh, its top fixed, its bottom on the base.
     pub fn new(case: &Case, spec: &BlockSpec) -> Result<Self, RunError> {
-        let mesh = StructuredMesh { width: spec.width, height: spec.height, nx: spec.nx, ny: spec.ny };
-        let material = PlaneStrain { youngs_modulus: spec.youngs_modulus, poisson_ratio: spec.poisson_ratio };
-        let Block { body, contact, .. } = assemble(
-            mesh,
-            material,
-            spec.density,
-            case.friction.clone(),
-            |x| spec.normal_traction.at(x, spec.width),
-            spec.base_velocity,
-            spec.base_ramp_time,
-        );
-        // A large body at a fixed step is condensed onto its contact; adaptive steps change τ
-        // every attempt, and each new τ would need the body refactored.
-        let fixed = case.time.method.fixed_implicit_steps(case.time.tolerance);
-        let linear_solver = if condensation_pays(body.dofs(), spec.nx + 1) && fixed {
-            LinearSolver::Condensed
-        } else {
-            LinearSolver::Full
+        let material = Material {
+            elasticity: PlaneStrain { youngs_modulus: spec.youngs_modulus, poisson_ratio: spec.poisson_ratio },
+            density: spec.density,
         };
-        let settings = Settings {
-            theta: case.time.theta,
-            velocity_scale: spec.base_velocity.abs().max(f64::MIN_POSITIVE),
-            energy_tolerance: case.time.energy_guard(),
-            linear_solver,
-            ..Settings::default()
+        let base = Motion::constant([spec.base_velocity, 0.0], spec.base_ramp_time);
+        let normal_traction = |x: f64| spec.normal_traction.at(x, spec.width);
+        let assembled =
+            block(spec.width, spec.height, spec.nx, spec.ny, material, case.friction.clone(), &normal_traction, base);
+        let drawing = MeshDrawing::rectangle(spec.width, spec.height, spec.nx, spec.ny, Some(MOST_LINES));
+        let presentation = Presentation {
+            kind: SceneKind::Block,
+            drawing,
+            driving_velocity: spec.base_velocity.abs(),
+            contact_names: vec![BOTTOM.into()],
         };
-        let shape = BlockShape { mesh };
-        let system = System::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |p| p / 2))?;
-        Ok(DynamicScene::assemble(case, system, layout(case, spec, mesh), shape))
+        build(case, assembled, presentation)
     }
 }
 
-/// The block's segments and surface nodes, named by the case's probes.
-fn layout(case: &Case, spec: &BlockSpec, mesh: StructuredMesh) -> Layout {
-    let name_of =
-        |probes: &[crate::case::Probe], index: usize| probes.iter().find(|p| p.index == index).map(|p| p.name.clone());
-    let dx = mesh.dx();
-    Layout {
-        kind: SceneKind::Block,
-        segments: (0..mesh.nx)
-            .map(|k| SegmentInfo {
-                left: k as f64 * dx,
-                right: (k + 1) as f64 * dx,
-                name: name_of(&case.probes.segments, k),
-            })
-            .collect(),
-        surface_nodes: (0..=mesh.nx)
-            .map(|i| NodeInfo { x: i as f64 * dx, name: name_of(&case.probes.nodes, i) })
-            .collect(),
-        mesh: Some(mesh),
-        driving_velocity: spec.base_velocity.abs(),
-        instantaneous_slip_rate: case.time.method.instantaneous_slip_rate(),
-    }
-}
-
-impl BlockShape {
-    fn node_displacement(&self, system: &System, id: usize) -> [f64; 2] {
-        match self.mesh.node_dofs(id) {
-            Some([x, y]) => [system.state.displacement[x], system.state.displacement[y]],
-            None => [0.0, 0.0],
-        }
-    }
-}
-
-impl Shape for BlockShape {
-    fn segment_of_point(&self, point: usize) -> usize {
-        point / 2
-    }
-
-    fn frame(&self, system: &System, needs: Needs, dt: f64) -> Frame {
-        let s = &system.state;
-        let points = &system.contact.points;
-        let segments = (0..self.mesh.nx)
-            .map(|k| {
-                segment_sample(
-                    system.contact.params(2 * k),
-                    (2 * k..2 * k + 2).map(|p| (points[p].weight, s.contact[p], s.slip_rate(p, dt))),
-                    needs.segment_state,
-                )
-            })
-            .collect();
-        let friction_force = points.iter().zip(&s.contact).map(|(p, c)| p.weight * c.traction_t).sum();
-        let surface_nodes = if needs.surface_nodes {
-            (0..=self.mesh.nx).map(|i| self.node_displacement(system, self.mesh.surface_node(i))).collect()
-        } else {
-            Vec::new()
-        };
-        let mesh = if needs.mesh {
-            (0..self.mesh.nodes()).map(|id| self.node_displacement(system, id)).collect()
-        } else {
-            Vec::new()
-        };
-        Frame {
-            step: s.step,
-            time: s.time,
-            dt,
-            segments,
-            surface_nodes,
-            mesh,
-            friction_force,
-            base_displacement: system.contact.surfaces[0].counter_body.motion.displacement_at(s.time)[0],
-            block: None,
-        }
-    }
+/// The paper's block assembled: `W × H` in `nx × ny` bilinear elements of `material`, its top
+/// fixed, its bottom in contact (law `params`, normal traction `normal_traction(x)`) with a base
+/// that moves along x as `base` says.
+#[allow(clippy::too_many_arguments)]
+pub fn block(
+    width: f64,
+    height: f64,
+    nx: usize,
+    ny: usize,
+    material: Material,
+    params: FrictionParams,
+    normal_traction: &dyn Fn(f64) -> f64,
+    base: Motion,
+) -> Assembled {
+    let mesh = rectangle(width, height, nx, ny);
+    let top: Vec<usize> = (ny * (nx + 1)..(ny + 1) * (nx + 1)).collect();
+    let at = |p: CurvePoint| normal_traction(p.x);
+    let definition = BodyDefinition {
+        mesh: &mesh,
+        materials: vec![material; mesh.cells.len()],
+        constraints: vec![Constraint {
+            name: TOP.into(),
+            nodes: top,
+            components: [true, true],
+            motion: Motion::at_rest(),
+        }],
+        tractions: Vec::new(),
+        contacts: vec![ContactDefinition {
+            name: BOTTOM.into(),
+            chain: mesh.boundary_chain(BOTTOM).expect("the rectangle's bottom is one chain"),
+            params,
+            main_body: MainBody { motion: base, along_tangent: true },
+            normal_traction: Box::new(at),
+        }],
+    };
+    assemble(&definition).expect("a block's boundaries share no node")
 }

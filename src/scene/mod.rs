@@ -2,8 +2,11 @@
 //! the sinks. A scene computes for a frame only what the sinks asked for ([`crate::frame::Needs`]).
 
 pub mod block;
+pub mod body;
+pub mod drawing;
 pub mod dynamic;
 pub mod interface;
+pub mod mesh;
 pub mod point;
 pub mod sample;
 pub mod spring_block;
@@ -17,5 +20,6 @@ pub fn build(case: &Case) -> Result<Box<dyn Scene>, RunError> {
         SceneSpec::Point(spec) => Box::new(point::PointScene::new(case.friction.clone(), spec.clone())),
         SceneSpec::SpringBlock(spec) => Box::new(spring_block::SpringBlockScene::new(case, spec)?),
         SceneSpec::Block(spec) => Box::new(block::BlockScene::new(case, spec)?),
+        SceneSpec::Mesh(spec) => Box::new(mesh::scene(case, spec)?),
     })
 }

@@ -38,6 +38,7 @@ impl PointScene {
             kind: SceneKind::Point,
             segments: vec![SegmentInfo { left: 0.0, right: 0.0, name: None }],
             surface_nodes: Vec::new(),
+            contacts: Vec::new(),
             mesh: None,
             driving_velocity: spec.phases.iter().fold(0.0_f64, |m, p| m.max(p.velocity.abs())),
             instantaneous_slip_rate: false,

@@ -2,7 +2,7 @@
 //! whose far end moves at a constant velocity (Ozaki & Hashiguchi 2010).
 
 use crate::case::{Case, SpringBlockSpec};
-use crate::dynamics::{ContactBoundary, ContactPoint, CounterBody, LinearBody, Load, LoadHistory, Settings, System};
+use crate::dynamics::{ContactBoundary, ContactPoint, LinearBody, Load, LoadHistory, MainBody, Settings, System};
 use crate::frame::{Frame, Layout, Needs, SceneKind, SegmentInfo};
 use crate::linalg::sparse::SymmetricMatrix;
 use crate::scene::dynamic::{DynamicScene, Shape};
@@ -28,7 +28,7 @@ impl SpringBlockScene {
         let point = ContactPoint::single(0, if spec.velocity < 0.0 { 1.0 } else { -1.0 });
         let contact = ContactBoundary::single(
             case.friction.clone(),
-            CounterBody::at_rest(),
+            MainBody::at_rest(),
             vec![point],
             vec![spec.normal_traction],
         );
@@ -43,6 +43,7 @@ impl SpringBlockScene {
             kind: SceneKind::SpringBlock,
             segments: vec![SegmentInfo { left: 0.0, right: 0.0, name: None }],
             surface_nodes: Vec::new(),
+            contacts: Vec::new(),
             mesh: None,
             driving_velocity: spec.velocity.abs(),
             instantaneous_slip_rate: case.time.method.instantaneous_slip_rate(),

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use crate::catalog::events::{Catalog, Rupture, SlipEvent};
 use crate::frame::Ending;
-use crate::frame::{Frame, Layout, SceneKind};
+use crate::frame::{Frame, Layout};
 use crate::sink::{Sink, SinkError};
 
 /// Header of the events CSV.
@@ -28,7 +28,7 @@ impl CatalogSink {
 
 impl Sink for CatalogSink {
     fn begin(&mut self, layout: &Layout) -> Result<(), SinkError> {
-        if layout.kind != SceneKind::Block {
+        if !layout.kind.has_body() {
             self.ruptures_path = None;
         }
         // Fail now, not after the run, if the file cannot be written.

@@ -42,9 +42,10 @@ pub fn log_styles(rec: &rerun::RecordingStream, layout: &Layout) -> rerun::Recor
         }
         rec.log_static(entity, &style)?;
     }
-    if let Some(mesh) = layout.mesh {
-        let y = (0.12 * mesh.height.min(mesh.width)) as f32;
-        rec.log_static(schema::SPATIAL_BASE, &LineStrips2D::new([[[0.0, y], [mesh.width as f32, y]]]))?;
+    if let Some(mesh) = &layout.mesh {
+        // 2D views point y down: the body is drawn with y negated.
+        let bases = mesh.bases.iter().map(|line| line.iter().map(|&[x, y]| [x as f32, -y as f32]).collect::<Vec<_>>());
+        rec.log_static(schema::SPATIAL_BASE, &LineStrips2D::new(bases))?;
     }
     Ok(())
 }
@@ -64,20 +65,18 @@ fn draw(frame: &Frame, layout: &Layout, plan: &RecordingPlan) -> Vec<(&'static s
     let threshold = plan.slip_rate_threshold;
     let mag = plan.spec.magnification;
     let mut rows = Vec::new();
-    if let Some(mesh) = layout.mesh {
-        let (dx, dy) = (mesh.dx(), mesh.dy());
-        // 2D views point y down: the block is drawn at negative y, above its base.
-        let at = |i: usize, j: usize| -> [f32; 2] {
-            let [ux, uy] = frame.mesh[mesh.node(i, j)];
-            [(i as f64 * dx + mag * ux) as f32, -(j as f64 * dy + mag * uy) as f32]
+    if let Some(mesh) = &layout.mesh {
+        // 2D views point y down: the body is drawn with y negated, above its base.
+        let at = |k: u32| -> [f32; 2] {
+            let ([x, y], [ux, uy]) = (mesh.nodes[k as usize], frame.mesh[k as usize]);
+            [(x + mag * ux) as f32, -(y + mag * uy) as f32]
         };
-        let mut lines: Vec<Vec<[f32; 2]>> = (0..=mesh.ny).map(|j| (0..=mesh.nx).map(|i| at(i, j)).collect()).collect();
-        lines.extend((0..=mesh.nx).map(|i| (0..=mesh.ny).map(|j| at(i, j)).collect()));
+        let lines = mesh.lines.iter().map(|line| line.iter().map(|&k| at(k)).collect()).collect();
         rows.push((schema::SPATIAL_MESH, Row { strips: lines, colours: None }));
         rows.push((
             schema::SPATIAL_CONTACT,
             Row {
-                strips: (0..mesh.nx).map(|k| vec![at(k, 0), at(k + 1, 0)]).collect(),
+                strips: mesh.contact.iter().map(|&[a, b]| vec![at(a), at(b)]).collect(),
                 colours: Some(frame.segments.iter().map(|s| state_colour(s.slip_rate, threshold)).collect()),
             },
         ));

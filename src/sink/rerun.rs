@@ -229,7 +229,7 @@ impl RerunSink {
             )
             .map_err(rerun_error)?;
         }
-        if layout.kind == SceneKind::Block {
+        if layout.kind.has_body() {
             for r in &catalog.ruptures {
                 rec.set_duration_secs(schema::SIM_TIME, r.onset);
                 rec.log(

@@ -13,7 +13,7 @@
 use rerun::datatypes::TensorData;
 use rerun::{BarChart, RecordingStream, StateChange, StateConfiguration, TimeColumn};
 
-use crate::frame::{Frame, Layout, SceneKind};
+use crate::frame::{Frame, Layout};
 use crate::record::schema;
 
 /// The profile entities, what each shows of a segment, and its bars' colour and relative
@@ -59,7 +59,7 @@ impl SlipFront {
             threshold,
             mu_k,
             segments: segments.to_vec(),
-            profiles: layout.kind == SceneKind::Block && layout.segments.len() > 1,
+            profiles: layout.kind.has_body() && layout.segments.len() > 1,
             last_state: None,
             state_steps: Vec::new(),
             state_times: Vec::new(),

@@ -15,7 +15,7 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use crate::catalog::observations::Observations;
-use crate::frame::{Needs, SceneKind};
+use crate::frame::Needs;
 use crate::record::schema::RecordingPlan;
 use crate::run::{LoopOptions, Outcome, run};
 use crate::scene;
@@ -147,7 +147,7 @@ fn run_member(
     let layout = scene.layout().clone();
     let rrd = output(dir, &member.name, ".rrd");
     let name = format!("{}-{}", study.name, member.name);
-    let ruptures = (layout.kind == SceneKind::Block).then(|| output(dir, &member.name, ".ruptures.csv"));
+    let ruptures = (layout.kind.has_body()).then(|| output(dir, &member.name, ".ruptures.csv"));
     let (stop, fired) = (AtomicBool::new(false), OnceLock::new());
     let mut sinks: Vec<Box<dyn Sink + '_>> =
         vec![Box::new(CatalogSink::new(output(dir, &member.name, ".events.csv"), ruptures))];
@@ -183,7 +183,7 @@ fn run_member(
         Outcome::Sink(e) => return Err(e.to_string()),
     };
     let segments = layout.segments.len();
-    let verdict = (layout.kind == SceneKind::Block && segments >= 3).then(|| {
+    let verdict = (layout.kind.has_body() && segments >= 3).then(|| {
         let v = Observations::measure(&catalog.events, &catalog.ruptures, segments).verdict();
         [v.left_end, v.right_end, v.propagation]
     });

@@ -342,9 +342,11 @@ impl Sdirk4 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dynamics::Motion;
     use crate::dynamics::Settings;
-    use crate::fem::{Block, PlaneStrain, StructuredMesh, assemble};
+    use crate::fem::{Assembled, Material, PlaneStrain};
     use crate::friction::FrictionParams;
+    use crate::scene::block::block;
     use nalgebra::{Complex, DMatrix, DVector};
 
     #[test]
@@ -353,11 +355,12 @@ mod tests {
         // loading near its strength (f_t at R = 0.9 with the base pulling ahead), unloading,
         // and one without normal traction. The solve of (I - gJ) δ = r by elimination against
         // a dense J formed by central differences of the right-hand side itself.
-        let mesh = StructuredMesh { width: 4.0, height: 1.0, nx: 4, ny: 2 };
-        let material = PlaneStrain { youngs_modulus: 1.0e3, poisson_ratio: 0.0 };
+        let material =
+            Material { elasticity: PlaneStrain { youngs_modulus: 1.0e3, poisson_ratio: 0.0 }, density: 1000.0 };
         let params = FrictionParams::paper();
         let traction_n = |x: f64| if x < 0.5 { 0.0 } else { 300.0 + 200.0 * x };
-        let Block { body, contact, .. } = assemble(mesh, material, 1000.0, params.clone(), traction_n, 1e-3, 0.0);
+        let base = Motion::constant([1e-3, 0.0], 0.0);
+        let Assembled { body, contact, .. } = block(4.0, 1.0, 4, 2, material, params.clone(), &traction_n, base);
         let mut dynamics = System::new(body, contact, Settings::default()).unwrap();
         let n = dynamics.body.dofs();
         let m = dynamics.contact.points.len();

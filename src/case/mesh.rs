@@ -1,0 +1,659 @@
+//! `kind = "mesh"`: a body drawn in Gmsh. The case names the mesh's physical groups: materials on
+//! surfaces, boundaries (fixed, moving or loaded) and frictional contacts on curves. The mesh
+//! is read and every group resolved when the case is loaded, so that a wrong name is refused
+//! before anything runs, with the groups the mesh has.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use serde::Deserialize;
+
+use crate::case::profile::ProfileSpec;
+use crate::dynamics::{MainBody, Motion};
+use crate::fem::curve::{CurvePoint, segments};
+use crate::fem::{
+    BodyDefinition, Constraint, ContactDefinition, Material, Members, Mesh, PlaneStrain, Traction, TractionLoad,
+};
+use crate::friction::FrictionParams;
+use crate::validate::{Checker, Violation, shortest};
+
+/// `[scene]` with `kind = "mesh"`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// The Gmsh file (MSH 4.1 ASCII or binary, MSH 2.2 ASCII), relative to the case file.
+    pub file: String,
+    /// `[[scene.materials]]`: the material of each surface group.
+    pub materials: Vec<MaterialSpec>,
+    /// `[[scene.boundaries]]`: fixed, moving or loaded curves (eq. 10's `S_v` and `S_t`); the rest
+    /// of the boundary is free.
+    #[serde(default)]
+    pub boundaries: Vec<BoundarySpec>,
+    /// `[[scene.contacts]]`: the frictional contacts (`S_c`).
+    pub contacts: Vec<ContactSpec>,
+    /// The mesh and what the case's names resolve to, once loaded ([`MeshSpec::load`]).
+    #[serde(skip)]
+    pub loaded: Option<Arc<LoadedMesh>>,
+}
+
+/// `[[scene.materials]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// A surface group of the mesh.
+    pub group: String,
+    /// `E` (Pa).
+    pub youngs_modulus: f64,
+    /// `ν` (-), in [0, 0.5).
+    pub poisson_ratio: f64,
+    /// `ρ` (kg/m³).
+    pub density: f64,
+}
+
+/// Which displacement components a boundary prescribes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+pub enum Components {
+    #[serde(rename = "x")]
+    X,
+    #[serde(rename = "y")]
+    Y,
+    #[serde(rename = "xy")]
+    XY,
+}
+
+impl Components {
+    pub fn mask(self) -> [bool; 2] {
+        match self {
+            Components::X => [true, false],
+            Components::Y => [false, true],
+            Components::XY => [true, true],
+        }
+    }
+}
+
+/// A velocity: a number (one component, or a speed along a contact's tangent) or `[vx, vy]`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum VelocitySpec {
+    Scalar(f64),
+    Vector([f64; 2]),
+}
+
+/// One phase of a velocity history.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PhaseSpec {
+    /// The velocity held (m/s).
+    pub velocity: VelocitySpec,
+    /// How long (s); the last phase may leave it out to last to the end.
+    pub duration: Option<f64>,
+}
+
+/// `[[scene.boundaries]]`: exactly one of `fixed`, `velocity`, `phases`, `traction`, `pressure`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoundarySpec {
+    /// A curve (or point) group of the mesh.
+    pub group: String,
+    /// Held still in these components.
+    pub fixed: Option<Components>,
+    /// Moved at this velocity (m/s) from rest, after `ramp_time`.
+    pub velocity: Option<VelocitySpec>,
+    /// Moved through these phases of velocity.
+    pub phases: Option<Vec<PhaseSpec>>,
+    /// With `velocity` or `phases`: the components they prescribe (default `"xy"` for vectors).
+    pub components: Option<Components>,
+    /// A traction `[tx, ty]` (Pa) on the curve.
+    pub traction: Option<[f64; 2]>,
+    /// A pressure (Pa) pushing into the body along the curve's inward normal.
+    pub pressure: Option<f64>,
+    /// Every change of velocity, or the traction's rise from 0, is spread over this time (s);
+    /// default 0: at once.
+    #[serde(default)]
+    pub ramp_time: f64,
+}
+
+/// `[[scene.contacts]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// A curve group of the mesh: one open chain of boundary edges.
+    pub group: String,
+    /// The main body's velocity (m/s): a number along the contact's tangent, or `[vx, vy]`;
+    /// default 0 (held still).
+    pub base_velocity: Option<VelocitySpec>,
+    /// Or its phases.
+    pub base_phases: Option<Vec<PhaseSpec>>,
+    /// Every change of the main body's velocity is spread over this time (s); default 0.
+    #[serde(default)]
+    pub base_ramp_time: f64,
+    /// The normal traction along the contact, held constant (Pa).
+    pub normal_traction: ProfileSpec,
+    /// This contact's friction constants where they differ from `[friction]`.
+    pub friction: Option<toml::Table>,
+}
+
+/// A mesh read, and the case's names resolved on it.
+pub struct LoadedMesh {
+    /// The file as found (the case's folder joined with `file`).
+    pub path: PathBuf,
+    /// A digest of the file's bytes, which stands for the mesh in the case's `Debug` form.
+    pub digest: u64,
+    pub mesh: Mesh,
+    /// Each cell's material ([`MeshSpec::materials`] index).
+    pub cell_material: Vec<usize>,
+    /// Each boundary's nodes, and for loaded ones the chain.
+    pub boundary_nodes: Vec<Vec<usize>>,
+    pub boundary_chains: Vec<Option<Vec<usize>>>,
+    /// Each contact's chain, and its friction constants.
+    pub contact_chains: Vec<Vec<usize>>,
+    pub contact_params: Vec<FrictionParams>,
+}
+
+/// Left out of a case's `Debug` form, which names the run: the file's digest stands for the
+/// mesh.
+impl std::fmt::Debug for LoadedMesh {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "mesh {:016x}", self.digest)
+    }
+}
+
+/// The largest mesh file read (bytes): an ASCII mesh of a million nodes is about 60 MB.
+pub const MAX_MESH_BYTES: u64 = 1 << 30;
+
+impl VelocitySpec {
+    fn vector(self) -> [f64; 2] {
+        match self {
+            VelocitySpec::Scalar(v) => [v, 0.0],
+            VelocitySpec::Vector(v) => v,
+        }
+    }
+
+    fn is_scalar(self) -> bool {
+        matches!(self, VelocitySpec::Scalar(_))
+    }
+
+    fn finite(self) -> bool {
+        self.vector().iter().all(|v| v.is_finite())
+    }
+}
+
+/// A velocity history from a constant velocity or phases, every change spread over `ramp`;
+/// `place` puts a phase's velocity into x and y.
+fn motion(
+    velocity: Option<VelocitySpec>,
+    phases: Option<&[PhaseSpec]>,
+    ramp: f64,
+    place: impl Fn(VelocitySpec) -> [f64; 2],
+) -> Motion {
+    match (velocity, phases) {
+        (_, Some(phases)) => {
+            Motion::phases(&phases.iter().map(|p| (place(p.velocity), p.duration)).collect::<Vec<_>>(), ramp)
+        }
+        (Some(v), None) => Motion::constant(place(v), ramp),
+        (None, None) => Motion::at_rest(),
+    }
+}
+
+impl BoundarySpec {
+    /// The prescribed components and their motion, for a boundary that prescribes motion.
+    pub fn constraint(&self) -> Option<([bool; 2], Motion)> {
+        if let Some(fixed) = self.fixed {
+            return Some((fixed.mask(), Motion::at_rest()));
+        }
+        if self.velocity.is_none() && self.phases.is_none() {
+            return None;
+        }
+        let components = self.components.unwrap_or(Components::XY);
+        let place = |v: VelocitySpec| match (v, components) {
+            (VelocitySpec::Scalar(v), Components::Y) => [0.0, v],
+            (v, _) => v.vector(),
+        };
+        Some((components.mask(), motion(self.velocity, self.phases.as_deref(), self.ramp_time, place)))
+    }
+
+    fn check(&self, c: &mut Checker<'_>) {
+        let kinds = [
+            self.fixed.is_some(),
+            self.velocity.is_some(),
+            self.phases.is_some(),
+            self.traction.is_some(),
+            self.pressure.is_some(),
+        ];
+        if kinds.iter().filter(|&&k| k).count() != 1 {
+            c.fail(
+                "group",
+                format!("{:?}", self.group),
+                "must have exactly one of fixed, velocity, phases, traction or pressure",
+            );
+            return;
+        }
+        c.non_negative("ramp_time", self.ramp_time);
+        let velocities: Vec<VelocitySpec> =
+            self.velocity.into_iter().chain(self.phases.iter().flatten().map(|p| p.velocity)).collect();
+        if let (true, Some(components)) = (velocities.is_empty(), self.components) {
+            c.fail("components", format!("{components:?}"), "applies to velocity or phases only");
+        }
+        for (i, v) in velocities.iter().enumerate() {
+            let key = if self.velocity.is_some() { "velocity".to_string() } else { format!("phases[{i}].velocity") };
+            if !v.finite() {
+                c.fail(&key, format!("{:?}", v.vector()), "must be finite");
+            }
+            match (v.is_scalar(), self.components) {
+                (true, Some(Components::X | Components::Y)) | (false, None | Some(Components::XY)) => {}
+                (true, _) => c.fail(
+                    &key,
+                    format!("{:?}", v.vector()[0]),
+                    "is one number: say which component it moves, components = \"x\" or \"y\" (or give [vx, vy])",
+                ),
+                (false, Some(k)) => c.fail(
+                    &key,
+                    format!("{:?}", v.vector()),
+                    format!("is a vector, but components = {k:?} prescribes one component: give a number"),
+                ),
+            }
+        }
+        check_phases(self.phases.as_deref(), "phases", c);
+        if let Some(t) = self.traction {
+            for (i, v) in t.iter().enumerate() {
+                c.finite(&format!("traction[{i}]"), *v);
+            }
+        }
+        if let Some(p) = self.pressure {
+            c.finite("pressure", p);
+        }
+    }
+}
+
+/// Every phase but the last has a positive duration; the last may leave it out.
+fn check_phases(phases: Option<&[PhaseSpec]>, key: &str, c: &mut Checker<'_>) {
+    let Some(phases) = phases else { return };
+    if phases.is_empty() {
+        c.fail(key, "[]", "must list at least one {velocity, duration} phase");
+    }
+    for (i, phase) in phases.iter().enumerate() {
+        match phase.duration {
+            Some(d) => c.positive(&format!("{key}[{i}].duration"), d),
+            None if i + 1 < phases.len() => {
+                c.fail(&format!("{key}[{i}].duration"), "none", "is needed: only the last phase may last to the end")
+            }
+            None => {}
+        }
+    }
+}
+
+impl ContactSpec {
+    /// How the contact's main body moves.
+    pub fn main_body(&self) -> MainBody {
+        let along_tangent = self
+            .base_velocity
+            .or(self.base_phases.as_ref().and_then(|p| p.first()).map(|p| p.velocity))
+            .is_none_or(VelocitySpec::is_scalar);
+        MainBody {
+            motion: motion(self.base_velocity, self.base_phases.as_deref(), self.base_ramp_time, VelocitySpec::vector),
+            along_tangent,
+        }
+    }
+
+    fn check(&self, c: &mut Checker<'_>) {
+        c.non_negative("base_ramp_time", self.base_ramp_time);
+        if self.base_velocity.is_some() && self.base_phases.is_some() {
+            c.fail("base_phases", "[...]", "cannot be given with base_velocity: give one of them");
+        }
+        let velocities: Vec<VelocitySpec> =
+            self.base_velocity.into_iter().chain(self.base_phases.iter().flatten().map(|p| p.velocity)).collect();
+        for v in &velocities {
+            if !v.finite() {
+                c.fail("base_velocity", format!("{:?}", v.vector()), "must be finite");
+            }
+        }
+        if velocities.windows(2).any(|w| w[0].is_scalar() != w[1].is_scalar()) {
+            c.fail(
+                "base_phases",
+                "[...]",
+                "must give every velocity the same way: all numbers (along the contact) or all [vx, vy]",
+            );
+        }
+        check_phases(self.base_phases.as_deref(), "base_phases", c);
+        let prefix = c.key("normal_traction");
+        let mut traction = Checker::new(&prefix);
+        self.normal_traction.check(&mut traction);
+        c.absorb(traction);
+    }
+}
+
+impl MaterialSpec {
+    fn check(&self, c: &mut Checker<'_>) {
+        c.positive("youngs_modulus", self.youngs_modulus);
+        if c.finite("poisson_ratio", self.poisson_ratio) && !(0.0..0.5).contains(&self.poisson_ratio) {
+            c.fail("poisson_ratio", self.poisson_ratio, "must lie in [0, 0.5)");
+        }
+        c.positive("density", self.density);
+    }
+
+    fn material(&self) -> Material {
+        Material {
+            elasticity: PlaneStrain { youngs_modulus: self.youngs_modulus, poisson_ratio: self.poisson_ratio },
+            density: self.density,
+        }
+    }
+}
+
+impl MeshSpec {
+    /// The rules that need no mesh, under `scene`.
+    pub fn check(&self, c: &mut Checker<'_>) {
+        if self.materials.is_empty() {
+            c.fail("materials", "[]", "must give at least one material: [[scene.materials]] with a surface group");
+        }
+        if self.contacts.is_empty() {
+            c.fail("contacts", "[]", "must give at least one contact: [[scene.contacts]] with a curve group");
+        }
+        for (i, m) in self.materials.iter().enumerate() {
+            let prefix = c.key(&format!("materials[{i}]"));
+            let mut inner = Checker::new(&prefix);
+            m.check(&mut inner);
+            c.absorb(inner);
+        }
+        for (i, b) in self.boundaries.iter().enumerate() {
+            let prefix = c.key(&format!("boundaries[{i}]"));
+            let mut inner = Checker::new(&prefix);
+            b.check(&mut inner);
+            c.absorb(inner);
+        }
+        for (i, contact) in self.contacts.iter().enumerate() {
+            let prefix = c.key(&format!("contacts[{i}]"));
+            let mut inner = Checker::new(&prefix);
+            contact.check(&mut inner);
+            c.absorb(inner);
+        }
+    }
+
+    /// The mesh as loaded; panics before [`Self::load`].
+    pub fn loaded(&self) -> &LoadedMesh {
+        self.loaded.as_deref().expect("a mesh case is loaded before it is used")
+    }
+
+    /// Reads the mesh (`file` relative to `dir`) and resolves every group the case names on it,
+    /// with `friction` (`[friction]`) as every contact's default. `Err` is a file the reader
+    /// refuses (its message names the file and where); the violations are the case's.
+    pub fn load(&mut self, dir: &Path, friction: &toml::Table) -> Result<Vec<Violation>, String> {
+        let path = dir.join(&self.file);
+        let bytes = read_mesh_file(&path)?;
+        let mesh = crate::fem::gmsh::parse(&bytes, &path.display().to_string()).map_err(|e| e.to_string())?;
+        let digest = u64::from(xxhash_rust::xxh32::xxh32(&bytes, 0));
+        let mut c = Checker::new("scene");
+        let cell_material = self.cell_materials(&mesh, &mut c);
+        let mut boundary_nodes = Vec::new();
+        let mut boundary_chains = Vec::new();
+        for (i, b) in self.boundaries.iter().enumerate() {
+            let key = format!("boundaries[{i}].group");
+            let loaded = b.traction.is_some() || b.pressure.is_some();
+            boundary_chains.push(if loaded { chain(&mesh, &b.group, &key, &mut c) } else { None });
+            boundary_nodes.push(nodes_of(&mesh, &b.group, &key, &mut c));
+        }
+        let mut contact_chains = Vec::new();
+        let mut contact_params = Vec::new();
+        for (i, contact) in self.contacts.iter().enumerate() {
+            let key = format!("contacts[{i}]");
+            contact_chains.push(chain(&mesh, &contact.group, &format!("{key}.group"), &mut c).unwrap_or_default());
+            contact_params.push(contact_friction(friction, contact.friction.as_ref(), &key, &mut c));
+        }
+        if !c.violations.is_empty() {
+            return Ok(c.violations);
+        }
+        let loaded = LoadedMesh {
+            path,
+            digest,
+            mesh,
+            cell_material,
+            boundary_nodes,
+            boundary_chains: boundary_chains.into_iter().collect(),
+            contact_chains,
+            contact_params: contact_params.into_iter().map(|p| p.expect("checked above")).collect(),
+        };
+        self.check_contacts(&loaded, &mut c);
+        if let Err(e) = crate::fem::assembly::check(&self.definition(&loaded)) {
+            c.fail("boundaries", "[...]", e.0);
+        }
+        self.loaded = Some(Arc::new(loaded));
+        Ok(c.violations)
+    }
+
+    /// Each cell's material: every cell in exactly one material group.
+    fn cell_materials(&self, mesh: &Mesh, c: &mut Checker<'_>) -> Vec<usize> {
+        let mut material = vec![usize::MAX; mesh.cells.len()];
+        for (i, m) in self.materials.iter().enumerate() {
+            let key = format!("materials[{i}].group");
+            let Some(Members::Cells(cells)) = group(mesh, &m.group, &key, "surface", c) else { continue };
+            for &cell in cells {
+                if material[cell] != usize::MAX {
+                    let other = &self.materials[material[cell]].group;
+                    let at = centre(mesh, cell);
+                    c.fail(
+                        &key,
+                        format!("{:?}", m.group),
+                        format!("shares the cell at {at} with {other:?}: a cell takes one material"),
+                    );
+                    return material;
+                }
+                material[cell] = i;
+            }
+        }
+        let missing: Vec<usize> = (0..mesh.cells.len()).filter(|&k| material[k] == usize::MAX).collect();
+        if let Some(&first) = missing.first() {
+            c.fail(
+                "materials",
+                format!("[{}]", self.materials.iter().map(|m| format!("{:?}", m.group)).collect::<Vec<_>>().join(", ")),
+                format!("leave {} cells without a material (the first at {}): every surface group needs one; the mesh has {}", missing.len(), centre(mesh, first), describe_groups(mesh)),
+            );
+        }
+        material
+    }
+
+    /// The normal traction of each contact: defined, finite and not negative at every Gauss
+    /// point, a table covering the contact; and `f0` inside the initial subloading surface.
+    fn check_contacts(&self, loaded: &LoadedMesh, c: &mut Checker<'_>) {
+        for (i, (contact, chain)) in self.contacts.iter().zip(&loaded.contact_chains).enumerate() {
+            let key = format!("contacts[{i}].normal_traction");
+            let points: Vec<CurvePoint> = segments(chain, &loaded.mesh.nodes)
+                .iter()
+                .flat_map(|s| s.gauss_points(&loaded.mesh.nodes).map(|g| g.position))
+                .collect();
+            if let Some((along, from, to)) = contact.normal_traction.covers() {
+                let (low, high) = points
+                    .iter()
+                    .map(|p| along.of(*p))
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| (a.min(s), b.max(s)));
+                if from > low || to < high {
+                    c.fail(
+                        &format!("{key}.at"),
+                        format!("[{}, …, {}]", shortest(from), shortest(to)),
+                        format!(
+                            "must cover the contact, whose Gauss points lie from {} to {} m in {along:?}",
+                            shortest(low),
+                            shortest(high)
+                        ),
+                    );
+                    continue;
+                }
+            }
+            let values: Vec<f64> = points.iter().map(|p| contact.normal_traction.at(*p)).collect();
+            if let Some((p, v)) = points.iter().zip(&values).find(|(_, v)| !(v.is_finite() && **v >= 0.0)) {
+                c.fail(&key, format!("{} Pa", shortest(*v)), format!("at the contact point ({}, {}) (arc length {} m): a normal traction must be finite and not negative", shortest(p.x), shortest(p.y), shortest(p.arc)));
+                continue;
+            }
+            let params = &loaded.contact_params[i];
+            let weakest = values.iter().copied().filter(|v| *v > 0.0).fold(f64::INFINITY, f64::min);
+            let strength = params.mu_k * params.initial_structure() * weakest;
+            if weakest.is_finite() && params.f0 > strength {
+                c.fail(&format!("contacts[{i}].friction.f0"), params.f0, format!("must not exceed the initial strength mu_k (1/R*) f_n = {} Pa of the contact's weakest loaded point (f_n = {} Pa)", shortest(strength), shortest(weakest)));
+            }
+        }
+    }
+
+    /// The body the case describes, for [`crate::fem::assemble`].
+    pub fn definition<'a>(&'a self, loaded: &'a LoadedMesh) -> BodyDefinition<'a> {
+        let constraints = self.boundaries.iter().zip(&loaded.boundary_nodes).filter_map(|(b, nodes)| {
+            let (components, motion) = b.constraint()?;
+            Some(Constraint { name: b.group.clone(), nodes: nodes.clone(), components, motion })
+        });
+        let tractions = self.boundaries.iter().zip(&loaded.boundary_chains).filter_map(|(b, chain)| {
+            let traction = match (b.traction, b.pressure) {
+                (Some(t), _) => Traction::Vector(t),
+                (None, Some(p)) => Traction::Pressure(p),
+                (None, None) => return None,
+            };
+            Some(TractionLoad { chain: chain.clone()?, traction, ramp: b.ramp_time })
+        });
+        let contacts = self.contacts.iter().zip(&loaded.contact_chains).zip(&loaded.contact_params).map(
+            |((contact, chain), params)| ContactDefinition {
+                name: contact.group.clone(),
+                chain: chain.clone(),
+                params: params.clone(),
+                main_body: contact.main_body(),
+                normal_traction: Box::new(move |p: CurvePoint| contact.normal_traction.at(p)),
+            },
+        );
+        BodyDefinition {
+            mesh: &loaded.mesh,
+            materials: loaded.cell_material.iter().map(|&m| self.materials[m].material()).collect(),
+            constraints: constraints.collect(),
+            tractions: tractions.collect(),
+            contacts: contacts.collect(),
+        }
+    }
+
+    /// The fastest prescribed velocity of a boundary or a main body (m/s).
+    pub fn driving_velocity(&self) -> f64 {
+        let boundaries = self.boundaries.iter().filter_map(|b| b.constraint()).map(|(_, m)| m.largest_speed());
+        let contacts = self.contacts.iter().map(|c| c.main_body().motion.largest_speed());
+        boundaries.chain(contacts).fold(0.0, f64::max)
+    }
+
+    /// Degrees of freedom of the mesh's nodes (before any is fixed); `None` before loading.
+    pub fn unknowns(&self) -> Option<usize> {
+        self.loaded.as_ref().map(|l| 2 * l.mesh.nodes.len())
+    }
+
+    /// Segments and nodes of the contacts, together.
+    pub fn contact_sizes(&self) -> (usize, usize) {
+        self.loaded.as_ref().map_or((0, 0), |l| {
+            let segments: usize = l.contact_chains.iter().map(|c| c.len().saturating_sub(1)).sum();
+            (l.contact_chains.iter().map(Vec::len).sum(), segments)
+        })
+    }
+}
+
+/// `name`'s members if it is a group of `kind` ("surface", "curve"); else a violation at `key`
+/// listing the groups the mesh has.
+fn group<'m>(mesh: &'m Mesh, name: &str, key: &str, kind: &str, c: &mut Checker<'_>) -> Option<&'m Members> {
+    let Some(found) = mesh.groups.iter().find(|g| g.name == name) else {
+        c.fail(key, format!("{name:?}"), format!("names no group of the mesh; it has {}", describe_groups(mesh)));
+        return None;
+    };
+    let fits = matches!(
+        (&found.members, kind),
+        (Members::Cells(_), "surface") | (Members::Lines(_), "curve") | (Members::Points(_), "curve")
+    );
+    if !fits {
+        c.fail(
+            key,
+            format!("{name:?}"),
+            format!(
+                "is a {} group; a {kind} group is needed here (the mesh has {})",
+                group_kind(&found.members),
+                describe_groups(mesh)
+            ),
+        );
+        return None;
+    }
+    Some(&found.members)
+}
+
+/// The nodes of a curve or point group.
+fn nodes_of(mesh: &Mesh, name: &str, key: &str, c: &mut Checker<'_>) -> Vec<usize> {
+    let mut nodes: Vec<usize> = match group(mesh, name, key, "curve", c) {
+        Some(Members::Lines(lines)) => lines.iter().flatten().copied().collect(),
+        Some(Members::Points(points)) => points.clone(),
+        _ => Vec::new(),
+    };
+    nodes.sort_unstable();
+    nodes.dedup();
+    nodes
+}
+
+/// A curve group as one open chain of boundary edges, the body on its left.
+fn chain(mesh: &Mesh, name: &str, key: &str, c: &mut Checker<'_>) -> Option<Vec<usize>> {
+    if !matches!(group(mesh, name, key, "curve", c), Some(Members::Lines(_))) {
+        return None;
+    }
+    match mesh.boundary_chain(name) {
+        Ok(chain) => Some(chain),
+        Err(e) => {
+            c.fail(key, format!("{name:?}"), format!("is not one open chain of boundary edges: {e}"));
+            None
+        }
+    }
+}
+
+/// `[friction]` with a contact's own values over it, read and checked like `[friction]`.
+fn contact_friction(
+    base: &toml::Table,
+    own: Option<&toml::Table>,
+    key: &str,
+    c: &mut Checker<'_>,
+) -> Option<FrictionParams> {
+    let mut merged = base.clone();
+    for (k, v) in own.into_iter().flatten() {
+        merged.insert(k.clone(), v.clone());
+    }
+    let params: FrictionParams = match toml::Value::Table(merged).try_into() {
+        Ok(params) => params,
+        Err(e) => {
+            c.fail(&format!("{key}.friction"), "{...}", format!("is not a friction table: {}", e.to_string().trim()));
+            return None;
+        }
+    };
+    let prefix = c.key(&format!("{key}.friction"));
+    let mut inner = Checker::new(&prefix);
+    params.check(&mut inner);
+    let valid = inner.violations.is_empty();
+    c.absorb(inner);
+    valid.then_some(params)
+}
+
+fn group_kind(members: &Members) -> &'static str {
+    match members {
+        Members::Cells(_) => "surface",
+        Members::Lines(_) => "curve",
+        Members::Points(_) => "point",
+    }
+}
+
+/// "body (surface), bottom (curve), …".
+fn describe_groups(mesh: &Mesh) -> String {
+    if mesh.groups.is_empty() {
+        return "no physical groups (define them in Gmsh with Physical Surface/Curve)".into();
+    }
+    mesh.groups.iter().map(|g| format!("{:?} ({})", g.name, group_kind(&g.members))).collect::<Vec<_>>().join(", ")
+}
+
+/// "(x, y)" of a cell's centroid.
+fn centre(mesh: &Mesh, cell: usize) -> String {
+    let nodes = mesh.cells[cell].nodes();
+    let mean = |k: usize| nodes.iter().map(|&n| mesh.nodes[n][k]).sum::<f64>() / nodes.len() as f64;
+    format!("({}, {})", shortest(mean(0)), shortest(mean(1)))
+}
+
+/// The bytes of a mesh file: a regular file of at most [`MAX_MESH_BYTES`].
+fn read_mesh_file(path: &Path) -> Result<Vec<u8>, String> {
+    let name = path.display();
+    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read mesh file {name}: {e}"))?;
+    if !meta.is_file() {
+        return Err(format!("mesh file {name} is not a regular file; scene.file names a Gmsh .msh file"));
+    }
+    if meta.len() > MAX_MESH_BYTES {
+        return Err(format!("mesh file {name} is larger than {} MiB", MAX_MESH_BYTES >> 20));
+    }
+    std::fs::read(path).map_err(|e| format!("cannot read mesh file {name}: {e}"))
+}

@@ -1,0 +1,135 @@
+//! An elastic body of finite elements with frictional contacts: the one scene behind the
+//! paper's block and every mesh. [`build`] assembles a [`BodyDefinition`] and describes what a
+//! frame shows of it ([`BodyShape`]).
+
+use crate::case::Case;
+use crate::dynamics::{LinearSolver, Settings, System, condensation_pays};
+use crate::fem::{Assembled, Dofs};
+use crate::frame::{ContactInfo, Frame, Layout, MeshDrawing, Needs, NodeInfo, SceneKind, SegmentInfo};
+use crate::scene::dynamic::{DynamicScene, Shape};
+use crate::scene::interface::{RunError, step_error};
+use crate::scene::sample::segment_sample;
+
+/// How a body's contact points form segments (two Gauss points each), and what a frame shows
+/// of it: the segments, the contacts' nodes and the drawn nodes.
+pub struct BodyShape {
+    dofs: Dofs,
+    /// Segments over all contacts.
+    segments: usize,
+    /// The contacts' nodes, contact after contact, in order along each.
+    surface_nodes: Vec<usize>,
+    /// The mesh nodes the drawing draws, in its order.
+    drawn: Vec<usize>,
+}
+
+/// A body scene.
+pub type BodyScene = DynamicScene<BodyShape>;
+
+/// What a scene shows beyond its assembly: its kind, the drawing, and the driving velocity.
+pub struct Presentation {
+    pub kind: SceneKind,
+    /// The drawing and the mesh node of each drawn node.
+    pub drawing: (MeshDrawing, Vec<usize>),
+    /// The velocity that drives the scene (m/s), for the frames' and the catalog's scales.
+    pub driving_velocity: f64,
+    /// Each contact's name.
+    pub contact_names: Vec<String>,
+}
+
+/// Steps an assembled body as `case` asks.
+pub fn build(case: &Case, assembled: Assembled, presentation: Presentation) -> Result<BodyScene, RunError> {
+    let Assembled { body, contact, dofs, contacts } = assembled;
+    let mut contact_unknowns: Vec<usize> =
+        contact.points.iter().flat_map(|p| p.tangential.terms().map(|(d, _)| d)).collect();
+    contact_unknowns.sort_unstable();
+    contact_unknowns.dedup();
+    // A large body at a fixed step is condensed onto its contact; adaptive steps change τ
+    // every attempt, and each new τ would need the body refactored.
+    let fixed = case.time.method.fixed_implicit_steps(case.time.tolerance);
+    let linear_solver = if condensation_pays(body.dofs(), contact_unknowns.len()) && fixed {
+        LinearSolver::Condensed
+    } else {
+        LinearSolver::Full
+    };
+    let settings = Settings {
+        theta: case.time.theta,
+        velocity_scale: presentation.driving_velocity.max(f64::MIN_POSITIVE),
+        energy_tolerance: case.time.energy_guard(),
+        linear_solver,
+        ..Settings::default()
+    };
+    let surface_nodes: Vec<usize> = contacts
+        .iter()
+        .flat_map(|segments| segments.iter().map(|s| s.nodes[0]).chain(segments.last().map(|s| s.nodes[1])))
+        .collect();
+    let layout = layout(case, &contacts, &presentation);
+    let shape =
+        BodyShape { dofs, segments: contacts.iter().map(Vec::len).sum(), surface_nodes, drawn: presentation.drawing.1 };
+    let system = System::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |p| p / 2))?;
+    Ok(DynamicScene::assemble(case, system, layout, shape))
+}
+
+/// The body's contacts, segments and surface nodes, named by the case's probes.
+fn layout(case: &Case, contacts: &[Vec<crate::fem::curve::Segment>], presentation: &Presentation) -> Layout {
+    let name_of =
+        |probes: &[crate::case::Probe], index: usize| probes.iter().find(|p| p.index == index).map(|p| p.name.clone());
+    let mut segments = Vec::new();
+    let mut surface_nodes = Vec::new();
+    let mut infos = Vec::new();
+    for (chain, name) in contacts.iter().zip(&presentation.contact_names) {
+        for s in chain {
+            let name = name_of(&case.probes.segments, segments.len());
+            segments.push(SegmentInfo { left: s.arc[0], right: s.arc[1], name });
+        }
+        let arcs = chain.iter().map(|s| s.arc[0]).chain(chain.last().map(|s| s.arc[1]));
+        let count = surface_nodes.len();
+        for x in arcs {
+            let name = name_of(&case.probes.nodes, surface_nodes.len());
+            surface_nodes.push(NodeInfo { x, name });
+        }
+        infos.push(ContactInfo { name: name.clone(), segments: chain.len(), nodes: surface_nodes.len() - count });
+    }
+    Layout {
+        kind: presentation.kind,
+        segments,
+        surface_nodes,
+        contacts: if infos.len() > 1 { infos } else { Vec::new() },
+        mesh: Some(presentation.drawing.0.clone()),
+        driving_velocity: presentation.driving_velocity,
+        instantaneous_slip_rate: case.time.method.instantaneous_slip_rate(),
+    }
+}
+
+impl Shape for BodyShape {
+    fn segment_of_point(&self, point: usize) -> usize {
+        point / 2
+    }
+
+    fn frame(&self, system: &System, needs: Needs, dt: f64) -> Frame {
+        let s = &system.state;
+        let points = &system.contact.points;
+        let segments = (0..self.segments)
+            .map(|k| {
+                segment_sample(
+                    system.contact.params(2 * k),
+                    (2 * k..2 * k + 2).map(|p| (points[p].weight, s.contact[p], s.slip_rate(p, dt))),
+                    needs.segment_state,
+                )
+            })
+            .collect();
+        let friction_force = points.iter().zip(&s.contact).map(|(p, c)| p.weight * c.traction_t).sum();
+        let displacement =
+            |nodes: &[usize]| nodes.iter().map(|&n| self.dofs.displacement(n, &s.displacement, s.time)).collect();
+        Frame {
+            step: s.step,
+            time: s.time,
+            dt,
+            segments,
+            surface_nodes: if needs.surface_nodes { displacement(&self.surface_nodes) } else { Vec::new() },
+            mesh: if needs.mesh { displacement(&self.drawn) } else { Vec::new() },
+            friction_force,
+            base_displacement: system.contact.surfaces[0].main_body.motion.displacement_at(s.time)[0],
+            block: None,
+        }
+    }
+}
