@@ -132,6 +132,41 @@ impl Layout {
     }
 }
 
+impl Layout {
+    /// Named probes that crowd into less than half of their contact: the probe plots colour
+    /// the probes from the contact's start (purple) to its end (yellow), and their names (the
+    /// paper's "Nodes 1~6", left to right) promise a spread. `None` while they spread, or with
+    /// fewer than three.
+    pub fn probe_spread_warning(&self) -> Option<String> {
+        let mut warnings = Vec::new();
+        for (contact, segments, nodes) in self.contact_ranges() {
+            let length = self.segments[segments.clone()].iter().map(|s| s.right).fold(0.0, f64::max)
+                - self.segments[segments.clone()].iter().map(|s| s.left).fold(f64::INFINITY, f64::min);
+            let named_segments: Vec<f64> =
+                self.segments[segments].iter().filter(|s| s.name.is_some()).map(|s| 0.5 * (s.left + s.right)).collect();
+            let named_nodes: Vec<f64> =
+                self.surface_nodes[nodes].iter().filter(|n| n.name.is_some()).map(|n| n.x).collect();
+            for (what, at) in [("segments", named_segments), ("nodes", named_nodes)] {
+                let (low, high) = at.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+                if at.len() >= 3 && length > 0.0 && high - low < 0.5 * length {
+                    let of =
+                        if self.contacts.len() > 1 { format!("contact {contact:?}") } else { "the contact".into() };
+                    warnings.push(format!(
+                        "the {} named probes.{what} lie within {} to {} m of {of}'s {} m (arc length), though the \
+                         probe plots colour them from its start to its end as if they spread along it: give them by \
+                         position (x = ... or at = [x, y]) to follow the mesh",
+                        at.len(),
+                        crate::validate::shortest(low),
+                        crate::validate::shortest(high),
+                        crate::validate::shortest(length)
+                    ));
+                }
+            }
+        }
+        (!warnings.is_empty()).then(|| warnings.join("\n"))
+    }
+}
+
 /// A contact segment.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SegmentInfo {

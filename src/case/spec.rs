@@ -502,25 +502,48 @@ pub struct EventsSpec {
     pub merge_within: f64,
 }
 
-/// `[probes]`: names for nodes and segments of a block, so that figures and recordings can
-/// say "Node 1" or "Segment A" as the paper does.
+/// `[probes]`: names for nodes and segments of a body's contacts, so that figures and
+/// recordings can say "Node 1" or "Segment A" as the paper does.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ProbesSpec {
-    /// Contact-surface nodes, numbered from 0 at the left.
+    /// Contact-surface nodes, numbered from 0 along each contact, contact after contact.
     #[serde(default)]
     pub nodes: Vec<Probe>,
-    /// Contact segments (bottom element edges), numbered from 0 at the left.
+    /// Contact segments (element edges), numbered the same way.
     #[serde(default)]
     pub segments: Vec<Probe>,
 }
 
-/// One named probe.
+/// One named probe: by its number, or by position (the node, or the segment whose centre,
+/// lies nearest; the first of equals).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Probe {
     pub name: String,
-    pub index: usize,
+    /// Its number along the contacts.
+    pub index: Option<usize>,
+    /// Its x (m): the one whose x is nearest.
+    pub x: Option<f64>,
+    /// A point `[x, y]` (m): the one nearest to it.
+    pub at: Option<[f64; 2]>,
+}
+
+impl Probe {
+    /// The probe's index among nodes or segments at `positions`.
+    pub fn resolve(&self, positions: &[[f64; 2]]) -> usize {
+        let nearest = |distance: &dyn Fn(&[f64; 2]) -> f64| {
+            (0..positions.len())
+                .min_by(|&a, &b| distance(&positions[a]).total_cmp(&distance(&positions[b])))
+                .unwrap_or(0)
+        };
+        match (self.index, self.x, self.at) {
+            (Some(index), _, _) => index,
+            (None, Some(x), _) => nearest(&|p| (p[0] - x).abs()),
+            (None, None, Some([x, y])) => nearest(&|p| (p[0] - x).hypot(p[1] - y)),
+            (None, None, None) => 0,
+        }
+    }
 }
 
 impl ProbesSpec {
@@ -528,13 +551,33 @@ impl ProbesSpec {
         let (nodes, segments) = scene.contact_sizes();
         for (list, key, count) in [(&self.nodes, "nodes", nodes), (&self.segments, "segments", segments)] {
             for (i, probe) in list.iter().enumerate() {
-                if probe.index >= count {
-                    let rule = if count == 0 {
-                        format!("is not allowed: a {} scene has no nodes", scene.kind())
-                    } else {
-                        format!("must be below {count} (the scene has {count} {key}, numbered from 0 at the left)")
-                    };
-                    c.fail(&format!("{key}[{i}].index"), probe.index, rule);
+                let forms = [probe.index.is_some(), probe.x.is_some(), probe.at.is_some()];
+                if forms.iter().filter(|&&f| f).count() != 1 {
+                    c.fail(
+                        &format!("{key}[{i}]"),
+                        format!("{:?}", probe.name),
+                        "must give exactly one of index (its number), x (m) or at ([x, y] in m)",
+                    );
+                }
+                if count == 0 {
+                    c.fail(
+                        &format!("{key}[{i}]"),
+                        format!("{:?}", probe.name),
+                        format!("is not allowed: a {} scene has no nodes", scene.kind()),
+                    );
+                }
+                if let Some(index) = probe.index.filter(|&index| count > 0 && index >= count) {
+                    let rule = format!(
+                        "must be below {count} (the scene has {count} {key}, numbered from 0 along its contacts)"
+                    );
+                    c.fail(&format!("{key}[{i}].index"), index, rule);
+                }
+                if let Some(x) = probe.x {
+                    c.finite(&format!("{key}[{i}].x"), x);
+                }
+                if let Some(at) = probe.at {
+                    c.finite(&format!("{key}[{i}].at[0]"), at[0]);
+                    c.finite(&format!("{key}[{i}].at[1]"), at[1]);
                 }
                 if probe.name.trim().is_empty() {
                     c.fail(&format!("{key}[{i}].name"), format!("{:?}", probe.name), "must not be empty");

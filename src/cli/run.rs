@@ -79,6 +79,9 @@ pub fn command(args: RunArgs) -> ExitCode {
         Err(e) => return fail(EXIT_FAILED, e),
     };
     let block = scene.layout().kind.has_body();
+    if let (Some(warning), false) = (scene.layout().probe_spread_warning(), args.quiet) {
+        warning.lines().for_each(|line| eprintln!("slipfront: warning: {line}"));
+    }
     let _locks = match outputs.claim(&args, block) {
         Ok(locks) => locks,
         Err(e) => return fail(EXIT_INVALID, e),

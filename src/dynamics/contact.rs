@@ -34,14 +34,22 @@ impl Projection {
         projection
     }
 
-    /// `Σ c_k field[d_k]`.
+    /// `Σ c_k field[d_k]`, summed in the order of the terms.
     #[inline]
     pub fn apply(&self, field: &[f64]) -> f64 {
-        if self.len == 0 {
-            return 0.0;
+        match self.len {
+            0 => 0.0,
+            len => (1..len)
+                .fold(self.factors[0] * field[self.dofs[0]], |sum, k| sum + self.factors[k] * field[self.dofs[k]]),
         }
+    }
+
+    /// [`Self::apply`] for a projection of `N` terms (padded to it, [`Self::padded`]), the
+    /// loop unrolled: the rate form's right-hand side reads every point this way.
+    #[inline(always)]
+    pub fn apply_n<const N: usize>(&self, field: &[f64]) -> f64 {
         let mut sum = self.factors[0] * field[self.dofs[0]];
-        for k in 1..self.len {
+        for k in 1..N {
             sum += self.factors[k] * field[self.dofs[k]];
         }
         sum
@@ -53,6 +61,37 @@ impl Projection {
         for k in 0..self.len {
             forces[self.dofs[k]] += scale * self.factors[k];
         }
+    }
+
+    /// [`Self::scatter`] for `N` terms, as [`Self::apply_n`].
+    #[inline(always)]
+    pub fn scatter_n<const N: usize>(&self, scale: f64, forces: &mut [f64]) {
+        for k in 0..N {
+            forces[self.dofs[k]] += scale * self.factors[k];
+        }
+    }
+
+    /// Number of terms.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether it reads nothing.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The same projection with `n` terms: the missing ones read its first degree of freedom
+    /// with a factor `+0`, which adds nothing to a sum (a zero of the sign of the other terms'
+    /// products, or of the sum's) except the sign of an exact zero.
+    pub fn padded(&self, n: usize) -> Self {
+        let mut out = *self;
+        for k in self.len..n {
+            out.dofs[k] = self.dofs[0];
+            out.factors[k] = 0.0;
+        }
+        out.len = n.max(self.len);
+        out
     }
 
     /// The `(dof, factor)` terms.
@@ -144,6 +183,10 @@ impl MainBody {
 pub struct ContactSurface {
     pub params: FrictionParams,
     pub main_body: MainBody,
+    /// Its points, contiguous in [`ContactBoundary::points`].
+    pub points: std::ops::Range<usize>,
+    /// How many terms each of its points' tangential projections has (padded to the most).
+    pub terms: usize,
 }
 
 /// The frictional boundary: its surfaces, their points and the points' normal tractions.
@@ -163,7 +206,12 @@ impl ContactBoundary {
         points: Vec<ContactPoint>,
         traction_n: Vec<f64>,
     ) -> Self {
-        Self { surfaces: vec![ContactSurface { params, main_body }], points, traction_n }
+        let (points, terms) = padded(points);
+        Self {
+            surfaces: vec![ContactSurface { params, main_body, points: 0..points.len(), terms }],
+            points,
+            traction_n,
+        }
     }
 
     /// The friction law of point `k`.
@@ -172,29 +220,31 @@ impl ContactBoundary {
         &self.surfaces[self.points[k].surface].params
     }
 
-    /// Each surface's counter-body velocity at `t`, for [`Self::base_along`].
-    pub fn base_velocities(&self, t: f64) -> Vec<[f64; 2]> {
-        self.surfaces.iter().map(|s| s.main_body.motion.velocity_at(t)).collect()
+    /// Each surface's main-body velocity at `t`, for [`Self::base_along`].
+    pub fn base_velocities(&self, t: f64) -> SurfaceValues {
+        SurfaceValues::of(&self.surfaces, |s| s.main_body.motion.velocity_at(t))
     }
 
-    /// Each surface's counter-body displacement from `t0` to `t1`, for [`Self::base_along`]
-    /// (the same projection applies).
-    pub fn base_increments(&self, t0: f64, t1: f64) -> Vec<[f64; 2]> {
-        self.surfaces
-            .iter()
-            .map(|s| {
-                let (a, b) = (s.main_body.motion.displacement_at(t1), s.main_body.motion.displacement_at(t0));
-                [a[0] - b[0], a[1] - b[1]]
-            })
-            .collect()
+    /// Each surface's main-body displacement from `t0` to `t1`, for [`Self::base_along`] (the
+    /// same projection applies).
+    pub fn base_increments(&self, t0: f64, t1: f64) -> SurfaceValues {
+        SurfaceValues::of(&self.surfaces, |s| {
+            let (a, b) = (s.main_body.motion.displacement_at(t1), s.main_body.motion.displacement_at(t0));
+            [a[0] - b[0], a[1] - b[1]]
+        })
     }
 
     /// The main body's velocity (or displacement) along point `k`'s tangent, from the
     /// surfaces' values `per_surface` ([`Self::base_velocities`], [`Self::base_increments`]).
     #[inline]
-    pub fn base_along(&self, k: usize, per_surface: &[[f64; 2]]) -> f64 {
-        let point = &self.points[k];
-        self.surfaces[point.surface].main_body.along(point, per_surface[point.surface])
+    pub fn base_along(&self, k: usize, per_surface: &SurfaceValues) -> f64 {
+        self.base_along_point(&self.points[k], per_surface)
+    }
+
+    /// [`Self::base_along`] for a point at hand.
+    #[inline]
+    pub fn base_along_point(&self, point: &ContactPoint, per_surface: &SurfaceValues) -> f64 {
+        self.surfaces[point.surface].main_body.along(point, per_surface.get(point.surface))
     }
 
     /// The main bodies' displacement from `t0` to `t1` along each point's tangent (m).
@@ -203,14 +253,39 @@ impl ContactBoundary {
         (0..self.points.len()).map(|k| self.base_along(k, &bases)).collect()
     }
 
-    /// The main bodies' velocity at `t` along each point's tangent (m/s).
-    pub fn base_velocities_along(&self, t: f64) -> Vec<f64> {
-        let bases = self.base_velocities(t);
-        (0..self.points.len()).map(|k| self.base_along(k, &bases)).collect()
-    }
-
     /// The largest speed of any main body (m/s).
     pub fn largest_base_speed(&self) -> f64 {
         self.surfaces.iter().map(|s| s.main_body.motion.largest_speed()).fold(0.0, f64::max)
     }
+}
+
+/// A value per contact surface (a main body's velocity or displacement increment), kept
+/// without allocating for the usual single surface: the right-hand side of the rate form
+/// asks for it at every stage.
+pub struct SurfaceValues {
+    first: [f64; 2],
+    rest: Vec<[f64; 2]>,
+}
+
+impl SurfaceValues {
+    fn of(surfaces: &[ContactSurface], value: impl Fn(&ContactSurface) -> [f64; 2]) -> Self {
+        let mut values = surfaces.iter().map(value);
+        Self { first: values.next().unwrap_or([0.0, 0.0]), rest: values.collect() }
+    }
+
+    /// The value of surface `s`.
+    #[inline]
+    pub fn get(&self, s: usize) -> [f64; 2] {
+        if s == 0 { self.first } else { self.rest[s - 1] }
+    }
+}
+
+/// `points` with their tangential projections padded to the most terms any has, and that
+/// number (at least 1).
+pub fn padded(mut points: Vec<ContactPoint>) -> (Vec<ContactPoint>, usize) {
+    let terms = points.iter().map(|p| p.tangential.len()).max().unwrap_or(1).max(1);
+    for p in &mut points {
+        p.tangential = p.tangential.padded(terms);
+    }
+    (points, terms)
 }

@@ -8,6 +8,7 @@
 
 use nalgebra::Vector2;
 
+use crate::dynamics::contact::padded;
 use crate::dynamics::{
     ContactBoundary, ContactPoint, ContactSurface, LinearBody, Load, LoadHistory, MainBody, Motion, Projection,
 };
@@ -91,9 +92,11 @@ pub struct Dofs {
 
 impl Dofs {
     /// The displacement of `node` at `t` (m) for the free unknowns `u`.
+    #[inline]
     pub fn displacement(&self, node: usize, u: &[f64], t: f64) -> [f64; 2] {
         let component = |c: usize| match &self.nodes[node][c] {
             NodeDof::Free(i) => u[*i],
+            NodeDof::Prescribed(k) if self.motions[*k].is_at_rest() => 0.0,
             NodeDof::Prescribed(k) => self.motions[*k].displacement_at(t)[c],
         };
         [component(0), component(1)]
@@ -268,6 +271,7 @@ fn contact_boundary(
     let mut boundary = ContactBoundary { surfaces: Vec::new(), points: Vec::new(), traction_n: Vec::new() };
     let mut all = Vec::new();
     for (surface, contact) in definition.contacts.iter().enumerate() {
+        let first = boundary.points.len();
         refuse_moving_nodes(contact, dofs, coordinates)?;
         let chain = segments(&contact.chain, coordinates);
         for segment in &chain {
@@ -298,7 +302,14 @@ fn contact_boundary(
                 boundary.traction_n.push((contact.normal_traction)(gauss.position));
             }
         }
-        boundary.surfaces.push(ContactSurface { params: contact.params.clone(), main_body: contact.main_body.clone() });
+        let (points, terms) = padded(boundary.points.split_off(first));
+        boundary.points.extend(points);
+        boundary.surfaces.push(ContactSurface {
+            params: contact.params.clone(),
+            main_body: contact.main_body.clone(),
+            points: first..boundary.points.len(),
+            terms,
+        });
         all.push(chain);
     }
     Ok((boundary, all))

@@ -31,6 +31,16 @@ pub struct Segment {
     pub normal: [f64; 2],
     /// Arc length of its start and end from the chain's first node (m).
     pub arc: [f64; 2],
+    /// Coordinates of its start and end (m).
+    pub ends: [[f64; 2]; 2],
+}
+
+impl Segment {
+    /// The midpoint's coordinates (m).
+    pub fn centre(&self) -> [f64; 2] {
+        let [a, b] = self.ends;
+        [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]
+    }
 }
 
 /// A Gauss point of a segment: the segment's shape function values, weight and position.
@@ -55,7 +65,14 @@ pub fn segments(nodes: &[usize], coordinates: &[[f64; 2]]) -> Vec<Segment> {
             let tangent = [dx / length, dy / length];
             let start = arc;
             arc += length;
-            Segment { nodes: [pair[0], pair[1]], length, tangent, normal: [-tangent[1], tangent[0]], arc: [start, arc] }
+            Segment {
+                nodes: [pair[0], pair[1]],
+                length,
+                tangent,
+                normal: [-tangent[1], tangent[0]],
+                arc: [start, arc],
+                ends: [[xa, ya], [xb, yb]],
+            }
         })
         .collect()
 }

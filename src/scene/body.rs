@@ -4,6 +4,7 @@
 
 use crate::case::Case;
 use crate::dynamics::{LinearSolver, Settings, System, condensation_pays};
+use crate::fem::curve::Segment;
 use crate::fem::{Assembled, Dofs};
 use crate::frame::{ContactInfo, Frame, Layout, MeshDrawing, Needs, NodeInfo, SceneKind, SegmentInfo};
 use crate::scene::dynamic::{DynamicScene, Shape};
@@ -70,21 +71,30 @@ pub fn build(case: &Case, assembled: Assembled, presentation: Presentation) -> R
 }
 
 /// The body's contacts, segments and surface nodes, named by the case's probes.
-fn layout(case: &Case, contacts: &[Vec<crate::fem::curve::Segment>], presentation: &Presentation) -> Layout {
-    let name_of =
-        |probes: &[crate::case::Probe], index: usize| probes.iter().find(|p| p.index == index).map(|p| p.name.clone());
+fn layout(case: &Case, contacts: &[Vec<Segment>], presentation: &Presentation) -> Layout {
+    let centres: Vec<[f64; 2]> = contacts.iter().flatten().map(Segment::centre).collect();
+    let node_positions: Vec<[f64; 2]> = contacts
+        .iter()
+        .flat_map(|chain| chain.iter().map(|s| s.ends[0]).chain(chain.last().map(|s| s.ends[1])))
+        .collect();
+    let resolved = |probes: &[crate::case::Probe], positions: &[[f64; 2]]| -> Vec<(usize, String)> {
+        probes.iter().map(|p| (p.resolve(positions), p.name.clone())).collect()
+    };
+    let (segment_probes, node_probes) =
+        (resolved(&case.probes.segments, &centres), resolved(&case.probes.nodes, &node_positions));
+    let name_of = |probes: &[(usize, String)], index: usize| probes.iter().find(|p| p.0 == index).map(|p| p.1.clone());
     let mut segments = Vec::new();
     let mut surface_nodes = Vec::new();
     let mut infos = Vec::new();
     for (chain, name) in contacts.iter().zip(&presentation.contact_names) {
         for s in chain {
-            let name = name_of(&case.probes.segments, segments.len());
+            let name = name_of(&segment_probes, segments.len());
             segments.push(SegmentInfo { left: s.arc[0], right: s.arc[1], name });
         }
         let arcs = chain.iter().map(|s| s.arc[0]).chain(chain.last().map(|s| s.arc[1]));
         let count = surface_nodes.len();
         for x in arcs {
-            let name = name_of(&case.probes.nodes, surface_nodes.len());
+            let name = name_of(&node_probes, surface_nodes.len());
             surface_nodes.push(NodeInfo { x, name });
         }
         infos.push(ContactInfo { name: name.clone(), segments: chain.len(), nodes: surface_nodes.len() - count });

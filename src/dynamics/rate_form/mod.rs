@@ -43,6 +43,7 @@ pub mod memory;
 pub mod sdirk4;
 pub mod tsit5;
 
+use crate::dynamics::contact::ContactSurface;
 use crate::dynamics::system::System;
 use crate::friction::{ContactState, law};
 
@@ -95,24 +96,52 @@ impl System {
         for (i, a) in dv.iter_mut().enumerate() {
             *a = load.at(i) - *a - self.initial_contact_force[i];
         }
-        let base = self.contact.base_velocities_along(t);
-        for (i, point) in self.contact.points.iter().enumerate() {
-            let params = self.contact.params(i);
-            point.scatter(point.weight * traction[i], dv);
+        let (y_contact, rate_contact) = ((traction, structure, slip), (dtraction, dstructure, dslip));
+        let mut out = (rate_contact, &mut *lambda);
+        for surface in &self.contact.surfaces {
+            match surface.terms {
+                1 => self.contact_rates::<1>(surface, t, v, y_contact, &mut out, dv),
+                2 => self.contact_rates::<2>(surface, t, v, y_contact, &mut out, dv),
+                3 => self.contact_rates::<3>(surface, t, v, y_contact, &mut out, dv),
+                _ => self.contact_rates::<4>(surface, t, v, y_contact, &mut out, dv),
+            }
+        }
+        for (a, mass) in dv.iter_mut().zip(&self.body.mass) {
+            *a /= mass;
+        }
+    }
+
+    /// The contact's part of the right-hand side for one surface whose points read `N` terms
+    /// each: the nodal forces `Σ w Ñᵀ f_t` into `dv`, and each point's `ḟ_t` (eq. 6 switched by
+    /// eq. 9), `d(1/R*)/dt` (eq. 4) and `ṗ = Λ` (eq. 5), with `Λ` into `out.1`.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn contact_rates<const N: usize>(
+        &self,
+        surface: &ContactSurface,
+        t: f64,
+        v: &[f64],
+        (traction, structure, slip): (&[f64], &[f64], &[f64]),
+        ((dtraction, dstructure, dslip), lambda): &mut ((&mut [f64], &mut [f64], &mut [f64]), &mut [f64]),
+        dv: &mut [f64],
+    ) {
+        let (params, main_body) = (&surface.params, &surface.main_body);
+        let base = main_body.motion.velocity_at(t);
+        for i in surface.points.clone() {
+            let point = &self.contact.points[i];
+            point.tangential.scatter_n::<N>(point.weight * traction[i], dv);
             let state = ContactState {
                 traction_t: traction[i],
                 traction_n: self.contact.traction_n[i],
                 structure: structure[i],
                 plastic_slip: slip[i],
             };
-            let r = law::tangential_rate(params, &state, point.interpolate(v) - base[i]);
+            let r =
+                law::tangential_rate(params, &state, point.tangential.apply_n::<N>(v) - main_body.along(point, base));
             dtraction[i] = r.rate;
             dstructure[i] = law::structure_rate(params, structure[i], r.plastic_multiplier);
             dslip[i] = r.plastic_multiplier;
             lambda[i] = r.plastic_multiplier;
-        }
-        for (a, mass) in dv.iter_mut().zip(&self.body.mass) {
-            *a /= mass;
         }
     }
 }

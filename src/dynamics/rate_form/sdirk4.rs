@@ -269,7 +269,7 @@ impl Sdirk4 {
         let n = dynamics.body.dofs();
         let m = dynamics.contact.points.len();
         let v = &y[n..2 * n];
-        let base = dynamics.contact.base_velocities_along(t);
+        let base = dynamics.contact.base_velocities(t);
         let mut stiffness = Vec::with_capacity(m);
         for (i, point) in dynamics.contact.points.iter().enumerate() {
             let params = dynamics.contact.params(i);
@@ -279,7 +279,7 @@ impl Sdirk4 {
                 structure: y[2 * n + m + i],
                 plastic_slip: y[2 * n + 2 * m + i],
             };
-            let v_t = point.interpolate(v) - base[i];
+            let v_t = point.interpolate(v) - dynamics.contact.base_along(i, &base);
             let mut linearization = PointLinearization::at(params, &state, v_t, g);
             if !linearization.is_finite() {
                 // With m < 1 or n < 1, eq. (4)'s powers have infinite slopes at the ends of
