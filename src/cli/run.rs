@@ -12,6 +12,7 @@ use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, compact_recordin
 use crate::cli::outputs::{self, Named, check_writable};
 use crate::cli::signals::Stop;
 use crate::frame::SceneKind;
+use crate::progress::ProgressMode;
 use crate::record::checkpoint::{CheckpointInfo, SavedCase, SavedOutputs};
 use crate::record::schema::RecordingPlan;
 use crate::run::{Checkpoints, LoopOptions, Outcome, RunMemory, run};
@@ -63,7 +64,12 @@ pub struct RunArgs {
     /// With --checkpoint-every, also keep each checkpoint as <case-stem>.<T>s.ckpt (T the multiple of the interval it was taken at, e.g. 300s).
     #[arg(long, requires = "checkpoint_every")]
     pub keep_checkpoints: bool,
-    /// Print nothing but errors: no progress bar, no summary.
+    /// How to show progress on stderr: auto (a bar in a terminal, else a line every 10 s for
+    /// a batch job's log: simulated time, steps, simulated seconds per wall second, the end
+    /// estimated from the recent rate), bar, lines or none.
+    #[arg(long, value_enum, default_value = "auto", value_name = "HOW")]
+    pub progress: ProgressMode,
+    /// Print nothing but errors: no progress, no summary.
     #[arg(long, short)]
     pub quiet: bool,
 }
@@ -99,7 +105,13 @@ pub fn command(args: RunArgs) -> ExitCode {
         scene.as_mut(),
         &case.time,
         &mut sinks,
-        LoopOptions { progress: !args.quiet, interrupt: Some(&stop.flag), checkpoints, ..LoopOptions::for_case(&case) },
+        LoopOptions {
+            progress: !args.quiet,
+            progress_mode: args.progress,
+            interrupt: Some(&stop.flag),
+            checkpoints,
+            ..LoopOptions::for_case(&case)
+        },
     );
     drop(sinks);
     if let Some(rrd) = &outputs.rrd {

@@ -125,6 +125,7 @@ pub fn write_arrow(table: &Table, out: impl Write) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use arrow::array::Array;
 
     fn table() -> Table {
         Table {
