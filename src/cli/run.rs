@@ -90,6 +90,7 @@ pub fn command(args: RunArgs) -> ExitCode {
         Ok(locks) => locks,
         Err(e) => return fail(EXIT_INVALID, e),
     };
+    say_replaced(&_locks, &args);
     let mut sinks = match outputs.sinks(&args, &case) {
         Ok(sinks) => sinks,
         Err(exit) => return exit,
@@ -122,6 +123,20 @@ pub fn command(args: RunArgs) -> ExitCode {
         written = format!("{written}; {}", saver.summary());
     }
     report(Reporting { case_file: &args.case, quiet: args.quiet }, &case, outcome, &written, &stop, scene.time())
+}
+
+/// One line on stderr naming the files of an earlier run that this one replaces (a rerun with
+/// other `--set` values writes the same `<out-dir>/<case-stem>.*`), unless quiet.
+fn say_replaced(locks: &outputs::Locks, args: &RunArgs) {
+    let replaced = locks.replaced();
+    if args.quiet || replaced.is_empty() {
+        return;
+    }
+    let names: Vec<String> = replaced.iter().map(|p| p.display().to_string()).collect();
+    eprintln!(
+        "slipfront: replacing an earlier run's {} (--out-dir DIR or --rrd/--events PATH keep it)",
+        names.join(", ")
+    );
 }
 
 /// Where a run's outputs go, and how often it checkpoints (simulated s).
@@ -247,14 +262,19 @@ pub(crate) fn report(
                 } else {
                     String::new()
                 };
+                // Ruptures group the events of neighbouring segments: a block's contact has
+                // several segments and a rupture catalog; a point or spring block has one.
+                let ruptures = match &case.scene {
+                    case::SceneSpec::Block(_) => format!(", {} ruptures", catalog.ruptures.len()),
+                    _ => String::new(),
+                };
                 let line = format!(
-                    "slipfront: {} ({}): {steps} steps{rejected} to t = {} s in {:.2} s; {} slip events, {} ruptures: {written}",
+                    "slipfront: {} ({}): {steps} steps{rejected} to t = {} s in {:.2} s; {} slip events{ruptures}: {written}",
                     reporting.case_file.display(),
                     case.scene.kind(),
                     case.time.t_end,
                     wall.as_secs_f64(),
                     catalog.events.len(),
-                    catalog.ruptures.len(),
                 );
                 let chosen = match &case.time.chosen_because {
                     Some(why) => format!("  time.integrator = \"auto\" chose {}: {why}\n", case.time.method.name()),

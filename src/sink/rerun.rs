@@ -427,11 +427,25 @@ pub fn open_stream(
                             `pip install rerun-sdk==0.36.3` (or `cargo install rerun-cli@0.36.3`), or use --connect URL"
                     .into());
             }
+            if !has_display() {
+                return Err(format!(
+                    "--spawn opens the Rerun viewer in a window, and this session has no display \
+                     (DISPLAY and WAYLAND_DISPLAY are unset); {}",
+                    without_a_window(file)
+                ));
+            }
             let options = rerun::SpawnOptions { wait_for_bind: true, ..Default::default() };
             let spawned = rerun::spawn(&options).map_err(|e| format!("cannot start the Rerun viewer: {e}"))?;
             Some(format!("rerun+http://127.0.0.1:{}/proxy", spawned.port))
         }
         Viewer::Connect(url) => Some(url.clone()),
+    };
+    let unreachable = |url: &str, e: String| match viewer {
+        Viewer::Spawn => format!(
+            "the Rerun viewer started by --spawn did not listen (its own message, if any, is above): {e}; {}",
+            without_a_window(file)
+        ),
+        _ => format!("--connect {url}: {e} (start one with `rerun`, or use --spawn)"),
     };
     let grpc = match &uri {
         None => None,
@@ -440,7 +454,7 @@ pub fn open_stream(
                 format!("--connect {url}: not a Rerun viewer URL ({e}); e.g. rerun+http://127.0.0.1:9876/proxy")
             })?;
             let address = format!("{}:{}", parsed.origin.host, parsed.origin.port);
-            crate::sink::viewer::answers(&address).map_err(|e| format!("--connect {url}: {e}"))?;
+            crate::sink::viewer::answers(&address).map_err(|e| unreachable(url, e))?;
             Some(DetachedViewer::connect(GrpcSink::new(parsed), url)?)
         }
     };
@@ -459,6 +473,23 @@ pub fn open_stream(
     }
     let rec = builder.set_sinks(sinks).map_err(|e| format!("cannot open the recording: {e}"))?;
     Ok(Some(Stream { rec, file: path, file_failure }))
+}
+
+/// Whether a window can be opened: an X11 or Wayland display is named in the environment.
+fn has_display() -> bool {
+    ["DISPLAY", "WAYLAND_DISPLAY", "WAYLAND_SOCKET"].iter().any(|v| std::env::var_os(v).is_some_and(|d| !d.is_empty()))
+}
+
+/// What works where no viewer window opens: the recording opened later, or a viewer elsewhere.
+fn without_a_window(file: Option<&std::path::Path>) -> String {
+    let later = match file {
+        Some(path) => format!(
+            "run without --spawn and open the recording later where there is a display (`rerun {}`)",
+            path.display()
+        ),
+        None => "run without --spawn and --no-rrd and open the recording later where there is a display".to_string(),
+    };
+    format!("{later}, or stream to a viewer running elsewhere with --connect rerun+http://HOST:9876/proxy")
 }
 
 /// An open recording stream, and the file it writes, if any, with that file's first write
