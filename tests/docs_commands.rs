@@ -51,6 +51,8 @@ const LISTED: &[(&str, &[(&str, How)])] = &[
             ("cargo run --release -- run cases/spring_block.toml --set time.t_end=500", Run),
             ("cargo run --release -- run cases/paper_triangular.toml --set time.integrator=wilson", Run),
             ("rerun recordings/paper_triangular.rrd", Skip("opens a window; scripts/viewer_shots.sh screenshots it")),
+            // With no display (removed below), it writes the blueprint and prints how to open it.
+            ("cargo run --release -- view recordings/paper_triangular.rrd --at 425.3", Run),
             ("toml: [events]", Toml("expect.toml")),
             ("cargo run --release -- check recordings/paper_triangular.rrd --expect expect.toml", Run),
             ("cargo run --release -- run cases/paper_triangular.toml --mcap recordings/paper_triangular.mcap", Run),
@@ -349,7 +351,15 @@ fn as_installed(command: &str) -> String {
 fn sh(dir: &Path, command: &str, expect_success: bool) -> String {
     let path = format!("{}:{}", dir.join("bin").display(), std::env::var("PATH").unwrap_or_default());
     let started = std::time::Instant::now();
-    let output = Command::new("sh").args(["-c", command]).current_dir(dir).env("PATH", path).output().unwrap();
+    // No window opens: `slipfront view` prints how to open the recording instead.
+    let output = Command::new("sh")
+        .args(["-c", command])
+        .current_dir(dir)
+        .env("PATH", path)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
     let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
     println!("{:6.1} s  {command}", started.elapsed().as_secs_f64());
     assert_eq!(

@@ -1,4 +1,4 @@
-//! The command line: `slipfront run | resume | check | figures | export | replay | study`, one file per command.
+//! The command line: `slipfront run | resume | check | figures | export | replay | study | view`, one file per command.
 
 pub mod check;
 pub mod checkpoints;
@@ -12,6 +12,7 @@ pub mod resume;
 pub mod run;
 pub mod signals;
 pub mod study;
+pub mod view;
 
 use std::process::ExitCode;
 
@@ -25,6 +26,7 @@ pub use replay::ReplayArgs;
 pub use resume::ResumeArgs;
 pub use run::RunArgs;
 pub use study::StudyArgs;
+pub use view::ViewArgs;
 
 /// Frictional stick-slip with the super/subloading surface friction model: a dynamic finite
 /// element solver whose contact follows Yasuike & Toyoda's model, with an event catalog of
@@ -83,6 +85,12 @@ pub enum Command {
     /// study file or argument (nothing runs), 130/143 interrupted (finished members are kept;
     /// --resume runs the rest).
     Study(StudyArgs),
+    /// Open a recording in the Rerun viewer with its time cursor at a chosen simulated time
+    /// (--at SECONDS), through a blueprint file written beside it.
+    ///
+    /// Exit codes: 0 opened (or, with --no-open or no display, the blueprint written and the
+    /// commands that open it printed), 1 the blueprint could not be written, 2 invalid input.
+    View(ViewArgs),
     /// Decode a recording and exit 0 (the child process of `check` and `figures`).
     #[command(name = "__decode-rrd", hide = true)]
     DecodeRrd { recording: std::path::PathBuf },
@@ -98,6 +106,7 @@ pub fn main_with(cli: Cli) -> ExitCode {
         Command::Export(args) => export::command(args),
         Command::Replay(args) => replay::command(args),
         Command::Study(args) => study::command(args),
+        Command::View(args) => view::command(args),
         Command::DecodeRrd { recording } => isolated::decode_in_child(&recording),
     }
 }

@@ -217,7 +217,8 @@ impl RerunSink {
             rec.log(
                 schema::EVENTS,
                 &rerun::TextLog::new(format!(
-                    "{} slips until {:.3} s: {:.4} m, peak {:.3e} m/s, f_t {:.2} -> {:.2} Pa",
+                    "{:.1} s: {} slips to {:.1} s, {:.2e} m, peak {:.1e} m/s, f_t {:.1} → {:.1} Pa",
+                    e.onset,
                     name(e.segment),
                     e.end,
                     e.slip,
@@ -235,7 +236,8 @@ impl RerunSink {
                 rec.log(
                     schema::EVENTS,
                     &rerun::TextLog::new(format!(
-                        "rupture nucleated at {}: segments {}-{} ({} slipped) until {:.3} s, max slip {:.4} m, friction force drop {:.2} {}",
+                        "{:.1} s: rupture from {}, segments {} to {} ({} slipped) to {:.1} s, max slip {:.2e} m, force drop {:.1} {}",
+                        r.onset,
                         name(r.nucleation_segment),
                         r.first_segment,
                         r.last_segment,
@@ -288,6 +290,7 @@ impl Sink for RerunSink {
             spatial,
             magnification: self.plan.spec.magnification,
             t_end: self.plan.t_end,
+            slip_rate_threshold: self.plan.slip_rate_threshold,
             profiles: front.as_ref().map_or_else(Vec::new, SlipFront::profile_entities),
         };
         blueprint::send(rec, &contents).map_err(rerun_error)?;
