@@ -145,9 +145,9 @@ impl Progress {
         }
         let t_end = self.t_end;
         let bar = self.bar.get_or_insert_with(|| {
-            let bar = ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::stderr());
+            let bar = ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::stderr()).with_elapsed(wall);
             bar.set_style(
-                ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {msg}")
+                ProgressStyle::with_template("{elapsed_precise} [{bar:20}] {msg}")
                     .expect("a valid template")
                     .progress_chars("=> "),
             );

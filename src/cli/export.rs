@@ -83,10 +83,10 @@ pub fn command(args: ExportArgs) -> ExitCode {
         return fail(EXIT_FAILED, format!("cannot write {}: {e}", out.display()));
     }
     let note = format!("{} rows × {} columns written to {}", table.steps.len(), table.columns.len() + 2, out.display());
-    if out != Path::new("-") {
-        if let Err(exit) = print(&format!("{note}\n")) {
-            return exit;
-        }
+    if out != Path::new("-")
+        && let Err(exit) = print(&format!("{note}\n"))
+    {
+        return exit;
     }
     match &recording.problem {
         Some(problem) => fail(

@@ -87,8 +87,5 @@ fn beside(recording: &Path, at: f64) -> PathBuf {
 
 /// Whether a viewer window can be opened here: a display, and `rerun` on `PATH`.
 fn can_open() -> bool {
-    let display = ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|d| !d.is_empty()));
-    let on_path = std::env::var_os("PATH")
-        .is_some_and(|paths| std::env::split_paths(&paths).any(|dir| dir.join("rerun").is_file()));
-    display && on_path
+    crate::sink::rerun::has_display() && crate::sink::rerun::find_on_path("rerun").is_some()
 }

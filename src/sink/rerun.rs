@@ -479,7 +479,7 @@ pub fn open_stream(
 }
 
 /// Whether a window can be opened: an X11 or Wayland display is named in the environment.
-fn has_display() -> bool {
+pub fn has_display() -> bool {
     ["DISPLAY", "WAYLAND_DISPLAY", "WAYLAND_SOCKET"].iter().any(|v| std::env::var_os(v).is_some_and(|d| !d.is_empty()))
 }
 
@@ -504,7 +504,7 @@ pub struct Stream {
 }
 
 /// The first executable called `name` on `PATH`.
-fn find_on_path(name: &str) -> Option<std::path::PathBuf> {
+pub fn find_on_path(name: &str) -> Option<std::path::PathBuf> {
     std::env::var_os("PATH").and_then(|paths| {
         std::env::split_paths(&paths).map(|dir| dir.join(name)).find(|candidate| {
             use std::os::unix::fs::PermissionsExt;
