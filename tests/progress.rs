@@ -9,11 +9,13 @@ use std::time::Instant;
 
 use common::{binary, case_path};
 
-/// Runs the paper case with Wilson's method (about 2.5 s) with stderr piped, the line interval
-/// set to `every` seconds (if any) and `extra` arguments; returns its progress lines and the
-/// wall-clock seconds the run took.
-fn progress_lines(every: Option<f64>, extra: &[&str]) -> (Vec<String>, f64) {
-    let out = std::env::temp_dir().join(format!("slipfront-progress-{}-{}", std::process::id(), extra.join("")));
+/// Runs the paper case with Wilson's method (about 2.5 s) into a folder named by `tag`, with
+/// stderr piped, the line interval set to `every` seconds (if any) and `extra` arguments;
+/// returns what it wrote on stderr, line by line, and the wall-clock seconds the run took.
+fn progress_lines(tag: &str, every: Option<f64>, extra: &[&str]) -> (Vec<String>, f64) {
+    // A folder of its own: a run that replaced another's outputs would say so on stderr.
+    let out = std::env::temp_dir().join(format!("slipfront-progress-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
     let mut cmd = binary();
     cmd.args(["run", &case_path("paper_triangular.toml"), "--set", "time.integrator=wilson", "--no-rrd", "--out-dir"])
         .arg(&out)
@@ -35,7 +37,7 @@ fn progress_lines(every: Option<f64>, extra: &[&str]) -> (Vec<String>, f64) {
 #[test]
 fn a_log_gets_a_line_at_the_stated_cadence() {
     let every = 0.25;
-    let (lines, wall) = progress_lines(Some(every), &[]);
+    let (lines, wall) = progress_lines("cadence", Some(every), &[]);
     // The run cannot print faster than its cadence, and prints at every interval it lives through.
     let most = (wall / every).floor() as usize;
     assert!(lines.len() <= most, "{} lines in {wall:.2} s at one per {every} s:\n{}", lines.len(), lines.join("\n"));
@@ -61,7 +63,7 @@ fn a_log_gets_a_line_at_the_stated_cadence() {
 #[test]
 fn the_default_cadence_is_ten_seconds() {
     // A run of about 2.5 s prints no progress line at all, and then its summary on stdout.
-    let (lines, wall) = progress_lines(None, &[]);
+    let (lines, wall) = progress_lines("default", None, &[]);
     assert!(wall < 10.0 || lines.len() <= (wall / 10.0) as usize, "{wall} s");
     if wall < 10.0 {
         assert!(lines.is_empty(), "{lines:?}");
@@ -70,10 +72,10 @@ fn the_default_cadence_is_ten_seconds() {
 
 #[test]
 fn none_and_quiet_print_nothing() {
-    for extra in [&["--progress", "none"][..], &["--quiet"][..]] {
-        let (lines, _) = progress_lines(Some(0.1), extra);
+    for (tag, extra) in [("none", &["--progress", "none"][..]), ("quiet", &["--quiet"][..])] {
+        let (lines, _) = progress_lines(tag, Some(0.1), extra);
         assert!(lines.is_empty(), "{extra:?}: {lines:?}");
     }
-    let (lines, _) = progress_lines(Some(0.1), &["--progress", "lines"]);
+    let (lines, _) = progress_lines("lines", Some(0.1), &["--progress", "lines"]);
     assert!(!lines.is_empty(), "--progress lines");
 }
