@@ -25,6 +25,7 @@ pub mod friction;
 pub mod fuzzing;
 pub mod inspect;
 pub mod linalg;
+pub mod progress;
 pub mod record;
 pub mod run;
 pub mod scene;

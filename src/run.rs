@@ -4,12 +4,11 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-
 use crate::case::{Case, TimeSpec};
 use crate::catalog::events::{Catalog, EventDetector};
 use crate::frame::Ending;
 use crate::frame::{Frame, Layout, Needs};
+use crate::progress::{Progress, ProgressMode};
 use crate::scene::{RunError, Scene, SceneMemory};
 use crate::sink::{Sink, SinkError, SinkMemory};
 
@@ -36,8 +35,10 @@ pub enum Outcome {
 
 /// Options of the loop.
 pub struct LoopOptions<'a> {
-    /// Show a progress bar on stderr once the run has taken longer than a second.
+    /// Show progress on stderr, as [`Self::progress_mode`] says.
     pub progress: bool,
+    /// A bar in a terminal or lines in a log ([`ProgressMode::Auto`]), or as asked.
+    pub progress_mode: ProgressMode,
     /// Set (e.g. by a signal handler) to stop after the current step.
     pub interrupt: Option<&'a AtomicBool>,
     /// Slip-rate threshold (m/s) and merge window (s) of the event catalog.
@@ -77,6 +78,7 @@ impl LoopOptions<'_> {
     pub fn for_case(case: &Case) -> Self {
         Self {
             progress: false,
+            progress_mode: ProgressMode::Auto,
             interrupt: None,
             slip_rate_threshold: case.slip_rate_threshold(),
             merge_within: case.events.merge_within,
@@ -148,7 +150,8 @@ pub fn run(
     let steps = time.steps();
     let adaptive = time.adaptive_tolerance().is_some();
     let start = Instant::now();
-    let mut progress = Progress::new(options.progress);
+    let mode = if options.progress { options.progress_mode } else { ProgressMode::None };
+    let mut progress = Progress::new(mode, scene.time(), time.t_end);
     let mut checkpoints = options.checkpoints.take();
     let mut next_checkpoint = checkpoints.as_ref().map_or(f64::INFINITY, |c| after(scene.time(), c.every));
     let mut last_dt = 0.0;
@@ -186,7 +189,7 @@ pub fn run(
             let _ = observers.finish(Ending::Failed);
             return Outcome::Sink(e);
         }
-        progress.show(k, scene.time(), time.t_end, start);
+        progress.show(k, scene.time());
     }
     progress.clear();
     // The end of a completed run is a checkpoint too, from which it can be extended.
@@ -270,41 +273,4 @@ fn step_limit(scene: &dyn Scene, time: &TimeSpec, adaptive: bool, k: u64, steps:
     }
     let target = if k == steps { time.t_end } else { k as f64 * time.dt };
     target - scene.time()
-}
-
-/// A progress bar on stderr, shown once a run has taken longer than a second, in thousandths
-/// of the simulated span so that fixed and adaptive steps show alike.
-struct Progress {
-    enabled: bool,
-    shown: bool,
-    bar: ProgressBar,
-}
-
-impl Progress {
-    fn new(enabled: bool) -> Self {
-        let bar = ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::hidden());
-        bar.set_style(
-            ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {msg}, eta {eta}")
-                .expect("a valid template")
-                .progress_chars("=> "),
-        );
-        Self { enabled, shown: false, bar }
-    }
-
-    /// After step `k`, at simulated time `t` of `t_end`.
-    fn show(&mut self, k: u64, t: f64, t_end: f64, start: Instant) {
-        if !self.enabled || !k.is_multiple_of(64) {
-            return;
-        }
-        if !self.shown && start.elapsed() > Duration::from_secs(1) {
-            self.bar.set_draw_target(ProgressDrawTarget::stderr());
-            self.shown = true;
-        }
-        self.bar.set_position((1000.0 * t / t_end) as u64);
-        self.bar.set_message(format!("t = {t:.1} of {t_end} s, step {k}"));
-    }
-
-    fn clear(&self) {
-        self.bar.finish_and_clear();
-    }
 }

@@ -290,6 +290,26 @@ fn viewer_options_are_checked_before_solving() {
         .unwrap();
     assert_eq!(output.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&output.stderr).contains("`rerun` is not on PATH"));
+    // --spawn with `rerun` on PATH but no display says what works instead, and not --spawn.
+    let bin = out.join("bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    std::fs::write(bin.join("rerun"), "#!/bin/sh\nexit 1\n").unwrap();
+    std::fs::set_permissions(bin.join("rerun"), std::os::unix::fs::PermissionsExt::from_mode(0o755)).unwrap();
+    let output = binary()
+        .args(["run", &case("spring_block.toml"), "--quiet", "--spawn", "--out-dir"])
+        .arg(&out)
+        .env("PATH", &bin)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("this session has no display"), "{stderr}");
+    assert!(stderr.contains(&format!("`rerun {}`", out.join("spring_block.rrd").display())), "{stderr}");
+    assert!(stderr.contains("--connect rerun+http://HOST:9876/proxy"), "{stderr}");
+    assert!(!stderr.contains("use --spawn"), "{stderr}");
     // --rrd and --no-rrd exclude each other.
     let output = binary().args(["run", &case("spring_block.toml"), "--rrd", "x.rrd", "--no-rrd"]).output().unwrap();
     assert_eq!(output.status.code(), Some(2));

@@ -86,7 +86,7 @@ fn judge(recording: &inspect::Recording, expect: &Expectations, partial: bool) -
 }
 
 /// Whether `path` is an MCAP log: named `.mcap`, or starting with the MCAP magic bytes.
-fn is_mcap(path: &Path) -> bool {
+pub(crate) fn is_mcap(path: &Path) -> bool {
     use std::io::Read;
     let mut magic = [0u8; 8];
     path.extension().is_some_and(|e| e.eq_ignore_ascii_case("mcap"))

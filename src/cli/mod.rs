@@ -1,8 +1,9 @@
-//! The command line: `slipfront run | resume | check | figures | replay | study`, one file per command.
+//! The command line: `slipfront run | resume | check | figures | export | replay | study | view`, one file per command.
 
 pub mod check;
 pub mod checkpoints;
 pub mod common;
+pub mod export;
 pub mod figures;
 pub mod isolated;
 pub mod outputs;
@@ -11,6 +12,7 @@ pub mod resume;
 pub mod run;
 pub mod signals;
 pub mod study;
+pub mod view;
 
 use std::process::ExitCode;
 
@@ -18,11 +20,13 @@ use clap::{Parser, Subcommand};
 
 pub use check::CheckArgs;
 pub use common::{EXIT_FAILED, EXIT_INTERRUPTED, EXIT_INVALID, ViewerArgs};
+pub use export::ExportArgs;
 pub use figures::FiguresArgs;
 pub use replay::ReplayArgs;
 pub use resume::ResumeArgs;
 pub use run::RunArgs;
 pub use study::StudyArgs;
+pub use view::ViewArgs;
 
 /// Frictional stick-slip with the super/subloading surface friction model: a dynamic finite
 /// element solver whose contact follows Yasuike & Toyoda's model, with an event catalog of
@@ -59,6 +63,13 @@ pub enum Command {
     /// Draw PNG plots like the paper's Figures 8 (displacement at the probe nodes) and 9
     /// (traction and 1/R* at the probe segments) from a recording.
     Figures(FiguresArgs),
+    /// Write a recording's or MCAP log's time series as a table (CSV, or Arrow IPC / Feather v2
+    /// for pandas, polars and R): one row per recorded step, units in the column names.
+    ///
+    /// Choose series with --series, a time window with --from/--to, and thin rows with
+    /// --every. Exit codes: 0 written, 1 damaged input (the table holds what came before the
+    /// damage), 2 unreadable input or invalid arguments.
+    Export(ExportArgs),
     /// Re-emit a slipfront MCAP log to Rerun with the live schema and blueprint.
     ///
     /// Writes <FILE-stem>.replay.rrd beside the log unless --rrd, --spawn or --connect says
@@ -74,6 +85,12 @@ pub enum Command {
     /// study file or argument (nothing runs), 130/143 interrupted (finished members are kept;
     /// --resume runs the rest).
     Study(StudyArgs),
+    /// Open a recording in the Rerun viewer with its time cursor at a chosen simulated time
+    /// (--at SECONDS), through a blueprint file written beside it.
+    ///
+    /// Exit codes: 0 opened (or, with --no-open or no display, the blueprint written and the
+    /// commands that open it printed), 1 the blueprint could not be written, 2 invalid input.
+    View(ViewArgs),
     /// Decode a recording and exit 0 (the child process of `check` and `figures`).
     #[command(name = "__decode-rrd", hide = true)]
     DecodeRrd { recording: std::path::PathBuf },
@@ -86,8 +103,10 @@ pub fn main_with(cli: Cli) -> ExitCode {
         Command::Resume(args) => resume::command(args),
         Command::Check(args) => check::command(args),
         Command::Figures(args) => figures::command(args),
+        Command::Export(args) => export::command(args),
         Command::Replay(args) => replay::command(args),
         Command::Study(args) => study::command(args),
+        Command::View(args) => view::command(args),
         Command::DecodeRrd { recording } => isolated::decode_in_child(&recording),
     }
 }

@@ -26,6 +26,17 @@ struct Held {
     created: bool,
 }
 
+impl Locks {
+    /// The outputs that held a file before the claim (an earlier run's, which this one replaces).
+    pub fn replaced(&self) -> Vec<&Path> {
+        self.0
+            .iter()
+            .filter(|held| !held.created && held.file.metadata().is_ok_and(|m| m.len() > 0))
+            .map(|held| held.path.as_path())
+            .collect()
+    }
+}
+
 impl Drop for Locks {
     fn drop(&mut self) {
         use std::os::unix::fs::MetadataExt;

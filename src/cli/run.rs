@@ -11,6 +11,7 @@ use crate::cli::checkpoints::{self, Saver};
 use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, ViewerArgs, compact_recording, fail, print};
 use crate::cli::outputs::{self, Named, check_writable};
 use crate::cli::signals::Stop;
+use crate::progress::ProgressMode;
 use crate::record::checkpoint::{CheckpointInfo, SavedCase, SavedOutputs};
 use crate::record::schema::RecordingPlan;
 use crate::run::{Checkpoints, LoopOptions, Outcome, RunMemory, run};
@@ -62,7 +63,12 @@ pub struct RunArgs {
     /// With --checkpoint-every, also keep each checkpoint as <case-stem>.<T>s.ckpt (T the multiple of the interval it was taken at, e.g. 300s).
     #[arg(long, requires = "checkpoint_every")]
     pub keep_checkpoints: bool,
-    /// Print nothing but errors: no progress bar, no summary.
+    /// How to show progress on stderr: auto (a bar in a terminal, else a line every 10 s for
+    /// a batch job's log: simulated time, steps, simulated seconds per wall second, the end
+    /// estimated from the recent rate), bar, lines or none.
+    #[arg(long, value_enum, default_value = "auto", value_name = "HOW")]
+    pub progress: ProgressMode,
+    /// Print nothing but errors: no progress, no summary.
     #[arg(long, short)]
     pub quiet: bool,
 }
@@ -86,6 +92,7 @@ pub fn command(args: RunArgs) -> ExitCode {
         Ok(locks) => locks,
         Err(e) => return fail(EXIT_INVALID, e),
     };
+    say_replaced(&_locks, &args);
     let mut sinks = match outputs.sinks(&args, &case) {
         Ok(sinks) => sinks,
         Err(exit) => return exit,
@@ -101,7 +108,13 @@ pub fn command(args: RunArgs) -> ExitCode {
         scene.as_mut(),
         &case.time,
         &mut sinks,
-        LoopOptions { progress: !args.quiet, interrupt: Some(&stop.flag), checkpoints, ..LoopOptions::for_case(&case) },
+        LoopOptions {
+            progress: !args.quiet,
+            progress_mode: args.progress,
+            interrupt: Some(&stop.flag),
+            checkpoints,
+            ..LoopOptions::for_case(&case)
+        },
     );
     drop(sinks);
     if let Some(rrd) = &outputs.rrd {
@@ -112,6 +125,20 @@ pub fn command(args: RunArgs) -> ExitCode {
         written = format!("{written}; {}", saver.summary());
     }
     report(Reporting { case_file: &args.case, quiet: args.quiet }, &case, outcome, &written, &stop, scene.time())
+}
+
+/// One line on stderr naming the files of an earlier run that this one replaces (a rerun with
+/// other `--set` values writes the same `<out-dir>/<case-stem>.*`), unless quiet.
+fn say_replaced(locks: &outputs::Locks, args: &RunArgs) {
+    let replaced = locks.replaced();
+    if args.quiet || replaced.is_empty() {
+        return;
+    }
+    let names: Vec<String> = replaced.iter().map(|p| p.display().to_string()).collect();
+    eprintln!(
+        "slipfront: replacing an earlier run's {} (--out-dir DIR or --rrd/--events PATH keep it)",
+        names.join(", ")
+    );
 }
 
 /// Where a run's outputs go, and how often it checkpoints (simulated s).
@@ -237,14 +264,19 @@ pub(crate) fn report(
                 } else {
                     String::new()
                 };
+                // Ruptures group the events of neighbouring segments: a block's contact has
+                // several segments and a rupture catalog; a point or spring block has one.
+                let ruptures = match &case.scene {
+                    case::SceneSpec::Block(_) => format!(", {} ruptures", catalog.ruptures.len()),
+                    _ => String::new(),
+                };
                 let line = format!(
-                    "slipfront: {} ({}): {steps} steps{rejected} to t = {} s in {:.2} s; {} slip events, {} ruptures: {written}",
+                    "slipfront: {} ({}): {steps} steps{rejected} to t = {} s in {:.2} s; {} slip events{ruptures}: {written}",
                     reporting.case_file.display(),
                     case.scene.kind(),
                     case.time.t_end,
                     wall.as_secs_f64(),
                     catalog.events.len(),
-                    catalog.ruptures.len(),
                 );
                 let chosen = match &case.time.chosen_because {
                     Some(why) => format!("  time.integrator = \"auto\" chose {}: {why}\n", case.time.method.name()),

@@ -2,6 +2,7 @@
 
 pub mod arrow_message;
 pub mod check;
+pub mod export;
 pub mod framing;
 pub mod mcap;
 pub mod rrd;

@@ -28,6 +28,34 @@ pub fn read(path: &Path) -> Result<Recording, ReadError> {
     decode(BufReader::new(std::io::Read::take(file, plausible.len)), &path.display().to_string(), plausible, footer)
 }
 
+/// The store of the blueprint a recording carries (written with its run description, before
+/// the first columns), read from the file's first messages; `None` if it has no blueprint.
+pub fn blueprint_store(path: &Path) -> Result<Option<rerun::external::re_log_types::StoreId>, ReadError> {
+    let open_error = |e: std::io::Error| ReadError(format!("cannot open {}: {e}", path.display()));
+    let mut file = File::open(path).map_err(open_error)?;
+    let total = file.metadata().map_err(open_error)?.len();
+    let plausible = framing::rrd(&mut file, total);
+    file.seek(SeekFrom::Start(0)).map_err(open_error)?;
+    let reader = BufReader::new(std::io::Read::take(file, plausible.len));
+    let name = path.display();
+    let mut decoder =
+        DecoderApp::decode_eager(reader).map_err(|e| ReadError(format!("{name} is not a Rerun recording: {e}")))?;
+    for _ in 0..BLUEPRINT_WITHIN {
+        match quietly(|| decoder.next()) {
+            Ok(Some(Ok(message))) if message.store_id().is_blueprint() => return Ok(Some(message.store_id().clone())),
+            Ok(Some(Ok(_))) => {}
+            Ok(None) => return Ok(None),
+            Ok(Some(Err(e))) => return Err(ReadError(format!("{name} is damaged before its blueprint: {e}"))),
+            Err(DecoderPanicked) => return Err(ReadError(format!("{name} is damaged before its blueprint"))),
+        }
+    }
+    Ok(None)
+}
+
+/// The messages a recording's blueprint is looked for in: slipfront writes it among the first
+/// few (the store's description, the run description, the series' styles).
+const BLUEPRINT_WITHIN: usize = 1000;
+
 /// The stream footer's checksum against the footer it points to, where the file ends with
 /// one (a recording cut before its footer has none): 32 bytes at the end, the footer's
 /// `start` and `len` (u64) and its `xxh32` (u32, seed 7850921), then `RRF2`, `FOOT` and the

@@ -11,3 +11,4 @@ pub mod digest;
 pub mod mcap;
 pub mod proto;
 pub mod schema;
+pub mod table;

@@ -15,7 +15,8 @@
 use rerun::blueprint::components::PanelState;
 use rerun::blueprint::{
     BarChartView, Blueprint, BlueprintActivation, BlueprintPanel, ContainerLike, Horizontal, SelectionPanel,
-    Spatial2DView, StateTimelineView, TextLogView, TimePanel, TimeSeriesView, Vertical, VisualizableArchetype as _,
+    Spatial2DView, StateTimelineView, Tabs, TextLogView, TimePanel, TimeSeriesView, Vertical,
+    VisualizableArchetype as _,
 };
 use rerun::external::re_log_types::{BlueprintActivationCommand, LogMsg};
 use rerun::external::re_sdk_types::blueprint::archetypes::{PlotLegend, TimeAxis};
@@ -31,7 +32,8 @@ use crate::sink::collected;
 /// Names of the views, for readers that check them.
 pub const VIEW_BLOCK: &str = "Block";
 pub const VIEW_STRENGTH: &str = "Along x (m): f_t against static and kinetic strength (Pa)";
-pub const VIEW_SLIP_RATE: &str = "Along x (m): slip rate (m/s)";
+/// The start of the slip-rate profile's name; the rest names its scale's floor.
+pub const VIEW_SLIP_RATE: &str = "Along x (m): slip rate, log10(v / v0)";
 pub const VIEW_STRUCTURE_PROFILE: &str = "Along x (m): 1/R*";
 pub const VIEW_STATE: &str = "Stick (blue) / slip (orange), a lane per segment from x = 0 at the top";
 pub const VIEW_SPACETIME: &str = "Space-time: log10 slip rate (m/s), x down, sim_time across";
@@ -49,6 +51,8 @@ pub struct Contents<'a> {
     pub spatial: bool,
     pub magnification: f64,
     pub t_end: f64,
+    /// The event threshold on the slip rate (m/s), for the slip-rate profile's scale.
+    pub slip_rate_threshold: f64,
     /// The profile entities written ([`crate::sink::slip_front`]).
     pub profiles: Vec<&'static str>,
 }
@@ -189,10 +193,28 @@ fn time_series(contents: &Contents<'_>, properties: &mut Vec<Properties>) -> Con
         whole_run(probe_plot(&traction, &segment_plot(Quantity::TractionT)), t_end, None, properties),
         whole_run(probe_plot(&structure, &segment_plot(Quantity::Structure)), t_end, None, properties),
         whole_run(probe_plot(&displacement_name, &displacement), t_end, None, properties),
-        TextLogView::new(VIEW_EVENTS).with_origin(format!("/{}", schema::EVENTS)).into(),
+        event_log(properties),
     ])
-    .with_column_shares([3.0, 3.0, 3.0, 2.0])
+    .with_column_shares([3.0, 3.0, 3.0, 3.5])
     .into()
+}
+
+/// The event log: its level and text, without the entity path (always `/events`), so the text
+/// has the width; each entry starts with its onset in seconds.
+fn event_log(properties: &mut Vec<Properties>) -> ContainerLike {
+    use rerun::external::re_sdk_types::blueprint::archetypes::TextLogColumns;
+    use rerun::external::re_sdk_types::blueprint::components::TextLogColumn;
+    use rerun::external::re_sdk_types::blueprint::datatypes::{self, TextLogColumnKind};
+    let view: ContainerLike = TextLogView::new(VIEW_EVENTS).with_origin(format!("/{}", schema::EVENTS)).into();
+    let column = |kind, visible: bool| TextLogColumn(datatypes::TextLogColumn { visible: visible.into(), kind });
+    let columns = TextLogColumns::new().with_text_log_columns([
+        column(TextLogColumnKind::LogLevel, true),
+        column(TextLogColumnKind::Body, true),
+        column(TextLogColumnKind::EntityPath, false),
+    ]);
+    properties
+        .push(Properties { path: path_of(&view), batches: vec![("TextLogColumns", columns.as_serialized_batches())] });
+    view
 }
 
 /// The top row: the block and, for a block of several segments, the profiles along x.
@@ -222,14 +244,39 @@ fn block_and_profiles(contents: &Contents<'_>, properties: &mut Vec<Properties>)
         block,
         Vertical::new([
             chart(VIEW_STRENGTH, &strength),
-            chart(VIEW_SLIP_RATE, &[schema::PROFILE_SLIP_RATE]),
+            chart(&slip_rate_name(contents.slip_rate_threshold), &[schema::PROFILE_SLIP_RATE]),
             chart(VIEW_STRUCTURE_PROFILE, &[schema::PROFILE_STRUCTURE]),
         ])
-        .with_row_shares([2.0, 1.0, 1.0])
+        .with_row_shares([2.0, 1.4, 1.0])
         .into(),
     ])
     .with_column_shares([3.0, 2.0])
     .into()
+}
+
+/// The name of the slip-rate profile: its log scale and the floor it counts from
+/// ([`crate::sink::slip_front::slip_rate_decades`]).
+fn slip_rate_name(threshold: f64) -> String {
+    let floor = crate::sink::slip_front::slip_rate_floor(threshold);
+    format!("{VIEW_SLIP_RATE}, v0 = {floor:.0e} m/s: 2 is the event threshold, 4 is 100 times it")
+}
+
+/// The most stick/slip lanes that show whole beside the space-time map at open, on a
+/// 1080-pixel screen: Rerun 0.36 draws a lane 22 px high, 1 px apart, under a 14-px label and a
+/// 20-px time axis, and the middle row gets about 330 px.
+pub const LANES_AT_OPEN: usize = 11;
+
+/// The middle row: the space-time map, and the stick/slip lanes beside it while they fit
+/// ([`LANES_AT_OPEN`]); more lanes go in a tab behind the map, which shows every segment.
+fn map_and_lanes(contents: &Contents<'_>) -> ContainerLike {
+    let lanes: ContainerLike =
+        StateTimelineView::new(VIEW_STATE).with_contents([format!("/{}", schema::CONTACT_STATE)]).into();
+    let map: ContainerLike = Spatial2DView::new(VIEW_SPACETIME).with_origin(format!("/{}", schema::SPACETIME)).into();
+    if contents.segments.len() <= LANES_AT_OPEN {
+        return Horizontal::new([map, lanes]).with_column_shares([3.0, 2.0]).into();
+    }
+    let active = path_of(&map);
+    Tabs::new([map, lanes]).with_active_tab(active).into()
 }
 
 /// The whole layout; the time series' properties go into `properties`.
@@ -238,14 +285,7 @@ fn root(contents: &Contents<'_>, properties: &mut Vec<Properties>) -> ContainerL
     if !contents.spatial {
         return series;
     }
-    let lanes: ContainerLike =
-        StateTimelineView::new(VIEW_STATE).with_contents([format!("/{}", schema::CONTACT_STATE)]).into();
-    let map: ContainerLike = Spatial2DView::new(VIEW_SPACETIME).with_origin(format!("/{}", schema::SPACETIME)).into();
-    Vertical::new([
-        block_and_profiles(contents, properties),
-        Horizontal::new([map, lanes]).with_column_shares([3.0, 2.0]).into(),
-        series,
-    ])
-    .with_row_shares([3.0, 2.5, 4.0])
-    .into()
+    Vertical::new([block_and_profiles(contents, properties), map_and_lanes(contents), series])
+        .with_row_shares([3.0, 3.4, 3.4])
+        .into()
 }

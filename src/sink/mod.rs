@@ -9,6 +9,7 @@ pub mod collected;
 pub mod geometry;
 pub mod mcap;
 pub mod memory;
+pub mod open_at;
 pub mod properties;
 pub mod recording_file;
 pub mod rerun;

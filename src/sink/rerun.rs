@@ -217,7 +217,8 @@ impl RerunSink {
             rec.log(
                 schema::EVENTS,
                 &rerun::TextLog::new(format!(
-                    "{} slips until {:.3} s: {:.4} m, peak {:.3e} m/s, f_t {:.2} -> {:.2} Pa",
+                    "{:.1} s: {} slips to {:.1} s, {:.2e} m, peak {:.1e} m/s, f_t {:.1} → {:.1} Pa",
+                    e.onset,
                     name(e.segment),
                     e.end,
                     e.slip,
@@ -235,7 +236,8 @@ impl RerunSink {
                 rec.log(
                     schema::EVENTS,
                     &rerun::TextLog::new(format!(
-                        "rupture nucleated at {}: segments {}-{} ({} slipped) until {:.3} s, max slip {:.4} m, friction force drop {:.2} {}",
+                        "{:.1} s: rupture from {}, segments {} to {} ({} slipped) to {:.1} s, max slip {:.2e} m, force drop {:.1} {}",
+                        r.onset,
                         name(r.nucleation_segment),
                         r.first_segment,
                         r.last_segment,
@@ -288,6 +290,7 @@ impl Sink for RerunSink {
             spatial,
             magnification: self.plan.spec.magnification,
             t_end: self.plan.t_end,
+            slip_rate_threshold: self.plan.slip_rate_threshold,
             profiles: front.as_ref().map_or_else(Vec::new, SlipFront::profile_entities),
         };
         blueprint::send(rec, &contents).map_err(rerun_error)?;
@@ -427,11 +430,25 @@ pub fn open_stream(
                             `pip install rerun-sdk==0.36.3` (or `cargo install rerun-cli@0.36.3`), or use --connect URL"
                     .into());
             }
+            if !has_display() {
+                return Err(format!(
+                    "--spawn opens the Rerun viewer in a window, and this session has no display \
+                     (DISPLAY and WAYLAND_DISPLAY are unset); {}",
+                    without_a_window(file)
+                ));
+            }
             let options = rerun::SpawnOptions { wait_for_bind: true, ..Default::default() };
             let spawned = rerun::spawn(&options).map_err(|e| format!("cannot start the Rerun viewer: {e}"))?;
             Some(format!("rerun+http://127.0.0.1:{}/proxy", spawned.port))
         }
         Viewer::Connect(url) => Some(url.clone()),
+    };
+    let unreachable = |url: &str, e: String| match viewer {
+        Viewer::Spawn => format!(
+            "the Rerun viewer started by --spawn did not listen (its own message, if any, is above): {e}; {}",
+            without_a_window(file)
+        ),
+        _ => format!("--connect {url}: {e} (start one with `rerun`, or use --spawn)"),
     };
     let grpc = match &uri {
         None => None,
@@ -440,7 +457,7 @@ pub fn open_stream(
                 format!("--connect {url}: not a Rerun viewer URL ({e}); e.g. rerun+http://127.0.0.1:9876/proxy")
             })?;
             let address = format!("{}:{}", parsed.origin.host, parsed.origin.port);
-            crate::sink::viewer::answers(&address).map_err(|e| format!("--connect {url}: {e}"))?;
+            crate::sink::viewer::answers(&address).map_err(|e| unreachable(url, e))?;
             Some(DetachedViewer::connect(GrpcSink::new(parsed), url)?)
         }
     };
@@ -461,6 +478,23 @@ pub fn open_stream(
     Ok(Some(Stream { rec, file: path, file_failure }))
 }
 
+/// Whether a window can be opened: an X11 or Wayland display is named in the environment.
+pub fn has_display() -> bool {
+    ["DISPLAY", "WAYLAND_DISPLAY", "WAYLAND_SOCKET"].iter().any(|v| std::env::var_os(v).is_some_and(|d| !d.is_empty()))
+}
+
+/// What works where no viewer window opens: the recording opened later, or a viewer elsewhere.
+fn without_a_window(file: Option<&std::path::Path>) -> String {
+    let later = match file {
+        Some(path) => format!(
+            "run without --spawn and open the recording later where there is a display (`rerun {}`)",
+            path.display()
+        ),
+        None => "run without --spawn and --no-rrd and open the recording later where there is a display".to_string(),
+    };
+    format!("{later}, or stream to a viewer running elsewhere with --connect rerun+http://HOST:9876/proxy")
+}
+
 /// An open recording stream, and the file it writes, if any, with that file's first write
 /// error.
 pub struct Stream {
@@ -470,7 +504,7 @@ pub struct Stream {
 }
 
 /// The first executable called `name` on `PATH`.
-fn find_on_path(name: &str) -> Option<std::path::PathBuf> {
+pub fn find_on_path(name: &str) -> Option<std::path::PathBuf> {
     std::env::var_os("PATH").and_then(|paths| {
         std::env::split_paths(&paths).map(|dir| dir.join(name)).find(|candidate| {
             use std::os::unix::fs::PermissionsExt;

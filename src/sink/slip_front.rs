@@ -6,7 +6,8 @@
 //! * `profile/*`: bar charts over the segments' centres (x in m) at every recorded step, so the
 //!   playhead shows the profile along the surface: tangential traction `f_t` between the static
 //!   strength `μ_k f_n / R*` (the superloading surface) and the kinetic strength `μ_k f_n` (the
-//!   normal sliding-yield surface), the slip rate, and the degree of structure `1/R*`. The
+//!   normal sliding-yield surface), the slip rate on a log scale ([`slip_rate_decades`]), and
+//!   the degree of structure `1/R*`. The
 //!   current strength `(R/R*) μ_k f_n` (the subloading surface) is `|f_t|` itself: the surface
 //!   passes through the current traction ([model](../../docs/model.md#surfaces-and-state)).
 
@@ -139,7 +140,8 @@ impl SlipFront {
         }
         for (i, (_, profile, _, _)) in PROFILES.iter().enumerate() {
             if self.writes(*profile) {
-                let values: Vec<f32> = frame.segments.iter().map(|s| value(*profile, s, self.mu_k) as f32).collect();
+                let values: Vec<f32> =
+                    frame.segments.iter().map(|s| value(*profile, s, self.mu_k, self.threshold) as f32).collect();
                 self.bars[i].push(TensorData::from(values));
             }
         }
@@ -176,14 +178,43 @@ impl SlipFront {
 }
 
 /// A segment's value in `profile`; the strengths are the superloading surface `μ_k f_n / R*`
-/// and the normal sliding-yield surface `μ_k f_n`.
-fn value(profile: Profile, s: &crate::frame::SegmentSample, mu_k: Option<f64>) -> f64 {
+/// and the normal sliding-yield surface `μ_k f_n`; the slip rate in decades above
+/// [`slip_rate_floor`] ([`slip_rate_decades`]).
+fn value(profile: Profile, s: &crate::frame::SegmentSample, mu_k: Option<f64>, threshold: f64) -> f64 {
     let kinetic_strength = mu_k.unwrap_or(f64::NAN) * s.traction_n;
     match profile {
         Profile::StaticStrength => kinetic_strength * s.structure,
         Profile::KineticStrength => kinetic_strength,
         Profile::Traction => s.traction_t,
-        Profile::SlipRate => s.slip_rate,
+        Profile::SlipRate => slip_rate_decades(s.slip_rate, threshold),
         Profile::Structure => s.structure,
+    }
+}
+
+/// The slip rate (m/s) the slip-rate profile counts its decades from: a hundredth of the event
+/// threshold, as the space-time map's floor.
+pub fn slip_rate_floor(threshold: f64) -> f64 {
+    threshold / 100.0
+}
+
+/// `log10(v / floor)` of a slip rate `v`, 0 at or below the floor ([`slip_rate_floor`]): a
+/// segment in stick has no bar, one at the event threshold a bar of 2, one sliding 100 times
+/// faster a bar of 4, so that every slipping segment shows, however its rate compares.
+pub fn slip_rate_decades(rate: f64, threshold: f64) -> f64 {
+    let floor = slip_rate_floor(threshold);
+    if rate > floor { (rate / floor).log10() } else { 0.0 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_slip_rate_profile_counts_decades_above_a_hundredth_of_the_threshold() {
+        let threshold = 3.0e-3;
+        assert_eq!(slip_rate_decades(1.0e-9, threshold), 0.0, "stick: no bar");
+        assert_eq!(slip_rate_decades(-1.0, threshold), 0.0, "a backward rate: no bar");
+        assert!((slip_rate_decades(threshold, threshold) - 2.0).abs() < 1e-12, "the threshold: 2");
+        assert!((slip_rate_decades(0.3, threshold) - 4.0).abs() < 1e-12, "100 times the threshold: 4");
     }
 }

@@ -83,7 +83,7 @@ pub fn answers(address: &str) -> Result<(), String> {
     let mut stream = addrs
         .filter_map(|a| TcpStream::connect_timeout(&a, Duration::from_secs(2)).ok())
         .next()
-        .ok_or_else(|| "no Rerun viewer is listening there (start one with `rerun`, or use --spawn)".to_string())?;
+        .ok_or_else(|| "no Rerun viewer is listening there".to_string())?;
     let silent = || {
         format!(
             "the endpoint accepted the connection but did not answer as a Rerun viewer (no HTTP/2 settings within {} s)",

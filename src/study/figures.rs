@@ -49,6 +49,7 @@ pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, 
         .ok_or("the recording has no run description (slipfront/run)")
         .and_then(|t| toml::from_str(t).map_err(|_| "the run description is unreadable"))?;
     std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    let end = data_end(recording, info.t_end);
     let colour = |position: usize, count: usize| {
         let [r, g, b] = sample(&POSITION, if count > 1 { position as f64 / (count - 1) as f64 } else { 0.5 });
         RGBColor(r, g, b)
@@ -77,7 +78,7 @@ pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, 
         displacement.push(Line { label: label.into(), series, colour: RGBColor(120, 120, 120) });
     }
     let fig8 = out.join(format!("{}_fig8_displacement.png", info.case));
-    plot(&fig8, &[(&format!("{}: horizontal displacement", info.case), "u_x (m)", &displacement)], info.t_end)?;
+    plot(&fig8, &[(&format!("{}: horizontal displacement", info.case), "u_x (m)", &displacement)], end)?;
 
     // Figure 9: traction and degree of structure at the probe segments.
     let segments = pick(&info.recorded_segments, &info.probe_segments);
@@ -103,7 +104,7 @@ pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, 
             (&format!("{}: tangential traction", info.case), "f_t (Pa)", &traction),
             ("degree of structure", "1/R*", &structure),
         ],
-        info.t_end,
+        end,
     )?;
     let spacetime = out.join(format!("{}_spacetime.png", info.case));
     let rates: Vec<(f64, &Series)> = info
@@ -120,13 +121,28 @@ pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, 
     if rates.is_empty() {
         return Ok(vec![fig8, fig9]);
     }
-    plot_spacetime(&spacetime, &info, &rates)?;
+    plot_spacetime(&spacetime, &info, &rates, end)?;
     Ok(vec![fig8, fig9, spacetime])
+}
+
+/// The time axes' end: the last recorded time of any series (a run interrupted or failed ends
+/// before `t_end`), or `t_end` where nothing past 0 was recorded.
+fn data_end(recording: &Recording, t_end: f64) -> f64 {
+    let last = recording.series.values().filter_map(|s| s.times.last().copied()).fold(0.0_f64, f64::max);
+    if last > 0.0 { last } else { t_end }
+}
+
+/// A tick label with as many decimals as ticks `step` apart need to read differently
+/// (`1.4998`, `1.4999`, `1.5000` rather than `1.5` three times).
+fn tick_label(value: f64, step: f64) -> String {
+    // A step of 9.99999e-6 (a tenth of a span in floating point) is one of 1e-5.
+    let decimals = if step > 0.0 && step.is_finite() { (-(step.log10() + 1e-6).floor()).max(0.0) as usize } else { 0 };
+    format!("{value:.decimals$}")
 }
 
 /// Slip rate against segment (across) and time (down), log colours from a hundredth of the
 /// event threshold to the peak.
-fn plot_spacetime(path: &Path, info: &RunInfo, rates: &[(f64, &Series)]) -> Result<(), String> {
+fn plot_spacetime(path: &Path, info: &RunInfo, rates: &[(f64, &Series)], end: f64) -> Result<(), String> {
     let floor = info.slip_rate_threshold / 100.0;
     let peak = rates.iter().flat_map(|(_, s)| s.values.iter().copied()).fold(0.0_f64, f64::max);
     let top = peak.max(info.slip_rate_threshold * 10.0);
@@ -143,7 +159,7 @@ fn plot_spacetime(path: &Path, info: &RunInfo, rates: &[(f64, &Series)]) -> Resu
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(80)
-            .build_cartesian_2d(0.0..segments, info.t_end..0.0)
+            .build_cartesian_2d(0.0..segments, end..0.0)
             .map_err(draw_error)?;
         chart
             .configure_mesh()
@@ -188,10 +204,14 @@ fn plot(path: &Path, panels: &[(&str, &str, &Vec<Line<'_>>)], t_end: f64) -> Res
                 .y_label_area_size(80)
                 .build_cartesian_2d(0.0..t_end, (lo - pad)..(hi + pad))
                 .map_err(draw_error)?;
+            // plotters draws about ten labels per axis: label them by a tenth of the span.
+            let (x_step, y_step) = (t_end / 10.0, (hi - lo + 2.0 * pad) / 10.0);
             chart
                 .configure_mesh()
                 .x_desc("time (s)")
                 .y_desc(*unit)
+                .x_label_formatter(&|v| tick_label(*v, x_step))
+                .y_label_formatter(&|v| tick_label(*v, y_step))
                 .label_style(("sans-serif", 16))
                 .draw()
                 .map_err(draw_error)?;
@@ -395,4 +415,30 @@ pub fn plot_proportions(
         root.present().map_err(draw_error)?;
     }
     write_png(path, &pixels)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_time_axis_ends_where_an_interrupted_runs_data_ends() {
+        let mut recording = Recording::default();
+        let series = Series { steps: vec![0, 1, 2], times: vec![0.0, 10.0, 42.5], values: vec![0.0; 3] };
+        recording.series.insert("contact/friction_force".into(), series);
+        assert_eq!(data_end(&recording, 1000.0), 42.5);
+        assert_eq!(data_end(&Recording::default(), 1000.0), 1000.0, "nothing recorded: the planned end");
+    }
+
+    #[test]
+    fn ticks_over_a_narrow_span_read_differently() {
+        // 1/R* of an interrupted run: 1.49990 to 1.5, ticks 1e-5 apart.
+        let (lo, hi) = (1.4999, 1.5);
+        let step = (hi - lo) / 10.0;
+        let labels: Vec<String> = (0..=10).map(|i| tick_label(lo + i as f64 * step, step)).collect();
+        let distinct: std::collections::BTreeSet<&String> = labels.iter().collect();
+        assert_eq!(distinct.len(), labels.len(), "{labels:?}");
+        assert_eq!(labels[0], "1.49990");
+        assert_eq!(tick_label(400.0, 100.0), "400");
+    }
 }

@@ -91,3 +91,64 @@ pub fn traction_errors_against_tsit5(reference: &str, check: &str, runs: &[[Stri
     let errors = runs.iter().map(|[a, b]| max_difference(&paper(&[a, b]), &reference)).collect();
     (converged, errors)
 }
+
+/// Skips an independent check whose tool is missing, loudly; fails instead where
+/// `SLIPFRONT_REQUIRE_OFFICIAL_TOOLS` is set (as in CI, which installs them).
+pub fn skip_missing<T>(what: &str) -> Option<T> {
+    assert!(
+        std::env::var_os("SLIPFRONT_REQUIRE_OFFICIAL_TOOLS").is_none(),
+        "{what} is required (SLIPFRONT_REQUIRE_OFFICIAL_TOOLS is set) but missing"
+    );
+    eprintln!("SKIPPED: {what} is not installed; the independent check did not run");
+    None
+}
+
+/// A fenced block of a Markdown file: its language tag (empty if none), the line its fence is
+/// on (from 1) and its text.
+#[derive(Debug, Clone)]
+pub struct Fenced {
+    pub lang: String,
+    pub line: usize,
+    pub body: String,
+}
+
+/// Every fenced block (```` ``` ````) of `markdown`, in order.
+pub fn fenced_blocks(markdown: &str) -> Vec<Fenced> {
+    let mut blocks = Vec::new();
+    let mut open: Option<Fenced> = None;
+    for (i, line) in markdown.lines().enumerate() {
+        let fence = line.trim_start().strip_prefix("```");
+        match (fence, open.take()) {
+            (Some(_), Some(block)) => blocks.push(block),
+            (Some(lang), None) => {
+                open = Some(Fenced { lang: lang.trim().to_string(), line: i + 1, body: String::new() })
+            }
+            (None, Some(mut block)) => {
+                block.body.push_str(line);
+                block.body.push('\n');
+                open = Some(block);
+            }
+            (None, None) => {}
+        }
+    }
+    blocks
+}
+
+/// The commands of a shell block: continuation lines joined, comments and blank lines dropped.
+pub fn shell_commands(body: &str) -> Vec<String> {
+    let joined = body.replace("\\\n", " ");
+    joined
+        .lines()
+        .map(|line| if line.trim_start().starts_with('#') { "" } else { line.split(" #").next().unwrap_or("") })
+        .map(|line| line.split_whitespace().collect::<Vec<_>>().join(" "))
+        .filter(|line| !line.is_empty())
+        .collect()
+}
+
+/// The text of `## heading` in `markdown`, up to the next `## ` heading.
+pub fn section<'a>(markdown: &'a str, heading: &str) -> &'a str {
+    let start = markdown.find(&format!("\n## {heading}\n")).unwrap_or_else(|| panic!("no section \"{heading}\""));
+    let rest = &markdown[start + 1..];
+    let end = rest[3..].find("\n## ").map_or(rest.len(), |e| e + 4);
+    &rest[..end]
+}
