@@ -1,6 +1,7 @@
 //! Finite elements of the body: mesh, element, and assembly into the equation of motion (14).
 
 pub mod assembly;
+pub mod body_mesh;
 pub mod element;
 pub mod mesh;
 
