@@ -3,6 +3,7 @@
 pub mod assembly;
 pub mod body_mesh;
 pub mod element;
+pub mod gmsh;
 pub mod mesh;
 
 pub use assembly::{Block, assemble};
