@@ -345,6 +345,29 @@ fn inconsistent_blocks_are_refused() {
 }
 
 #[test]
+fn an_element_in_more_than_32_groups_is_refused() {
+    // Each group lists its members one by one: tags times elements must stay near the file's size.
+    let copies: Vec<String> = (1..=33).map(|k| format!("{k} 2 2 {k} 1 1 2 3")).collect();
+    let copies: Vec<&str> = copies.iter().map(String::as_str).collect();
+    let v2 = msh22(&["1 0 0 0", "2 1 0 0", "3 0 1 0"], &copies);
+    assert_eq!(
+        refusal(v2),
+        "m.msh: line 44: element 33 (with its copies) is in more than 32 physical groups: slipfront reads at most 32 \
+         per element"
+    );
+    let tags: Vec<String> = (1..=33).map(|k| k.to_string()).collect();
+    let surface = format!("1 0 0 0 2 1 0 33 {} 4 1 2 3 4 ", tags.join(" "));
+    let v4 = text("triangles_parametric.msh").replace("1 0 0 0 2 1 0 2 1 7 4 1 2 3 4 ", &surface);
+    let line = v4.lines().position(|l| l == surface).unwrap() + 1;
+    assert_eq!(
+        refusal(v4),
+        format!(
+            "m.msh: line {line}: entity 1 of dimension 2 is in more than 32 physical groups: slipfront reads at most 32 per element"
+        )
+    );
+}
+
+#[test]
 fn declared_counts_allocate_nothing_the_file_cannot_hold() {
     let header = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
     let e = refusal(format!("{header}$Nodes\n18446744073709551615\n1 0 0 0\n$EndNodes\n"));

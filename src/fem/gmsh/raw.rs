@@ -9,6 +9,16 @@ use crate::fem::body_mesh::{Cell, Group, Members, Mesh, MeshError, Tags};
 use crate::validate::shortest;
 use std::collections::HashMap;
 
+/// The most physical groups one element (or entity) may be in. A group's members are listed
+/// one by one, so without a bound a small file could ask for a huge mesh: ten thousand tags on
+/// an entity of ten thousand elements make a hundred million members.
+pub(super) const MAX_GROUPS: usize = 32;
+
+/// The refusal of an element or entity in more than [`MAX_GROUPS`] groups.
+pub(super) fn too_many_groups(what: &str) -> String {
+    format!("{what} is in more than {MAX_GROUPS} physical groups: slipfront reads at most {MAX_GROUPS} per element")
+}
+
 /// A node as the file gives it.
 pub(super) struct RawNode {
     pub tag: u64,

@@ -4,7 +4,7 @@
 
 use super::element_types::{element_type, unknown};
 use super::physical_names;
-use super::raw::{Kind, RawElement, RawMesh, RawNode};
+use super::raw::{Kind, MAX_GROUPS, RawElement, RawMesh, RawNode, too_many_groups};
 use super::source::Source;
 use crate::fem::body_mesh::MeshError;
 use std::collections::HashMap;
@@ -70,7 +70,13 @@ fn read_elements(src: &mut Source, elements: &mut Vec<RawElement>, sets: &mut Gr
             _ => None,
         };
         match first {
-            Some(e) => elements[e].groups = sets.with(elements[e].groups, physical),
+            Some(e) => {
+                let merged = sets.with(elements[e].groups, physical);
+                if sets.lists[merged].len() > MAX_GROUPS {
+                    return Err(src.error(at, too_many_groups(&format!("element {tag} (with its copies)"))));
+                }
+                elements[e].groups = merged;
+            }
             None => {
                 if matches!(kind, Kind::Triangle | Kind::Quad) {
                     cells.insert((kind, nodes), elements.len());

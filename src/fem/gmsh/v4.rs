@@ -4,7 +4,7 @@
 
 use super::element_types::{ElementType, element_type, unknown};
 use super::physical_names;
-use super::raw::{Kind, RawElement, RawMesh, RawNode};
+use super::raw::{Kind, MAX_GROUPS, RawElement, RawMesh, RawNode, too_many_groups};
 use super::source::Source;
 use crate::fem::body_mesh::MeshError;
 use std::collections::HashMap;
@@ -69,11 +69,15 @@ fn read_entities(src: &mut Source) -> Result<HashMap<EntityKey, Vec<i32>>, MeshE
     let mut entities = HashMap::new();
     for (dimension, &count) in (0u8..).zip(&counts) {
         for _ in 0..count {
+            let at = src.here();
             let tag = src.int("an entity's tag")?;
             for _ in 0..if dimension == 0 { 3 } else { 6 } {
                 src.real("an entity's coordinate")?;
             }
             let n = src.size("an entity's number of physical tags")?;
+            if n > MAX_GROUPS as u64 {
+                return Err(src.error(at, too_many_groups(&format!("entity {tag} of dimension {dimension}"))));
+            }
             let mut physical = Vec::with_capacity(src.capacity(n, src.min_bytes(4)));
             for _ in 0..n {
                 physical.push(src.int("a physical tag")?);
@@ -90,16 +94,42 @@ fn read_entities(src: &mut Source) -> Result<HashMap<EntityKey, Vec<i32>>, MeshE
     Ok(entities)
 }
 
+/// The first line of `$Nodes` or `$Elements`: how many blocks, and how many nodes (elements)
+/// they hold in all; the smallest and largest tags are not needed.
+struct Header {
+    section: &'static str,
+    what: &'static str,
+    blocks: u64,
+    declared: u64,
+    at: usize,
+}
+
+impl Header {
+    fn read(src: &mut Source, section: &'static str, what: &'static str) -> Result<Header, MeshError> {
+        let at = src.here();
+        let blocks = src.size(&format!("the number of {what} blocks"))?;
+        let declared = src.size(&format!("the number of {what}s"))?;
+        src.size(&format!("the smallest {what} tag"))?;
+        src.size(&format!("the largest {what} tag"))?;
+        Ok(Header { section, what, blocks, declared, at })
+    }
+
+    /// The blocks hold as many as the header declares.
+    fn check(&self, src: &Source, total: u64) -> Result<(), MeshError> {
+        if total == self.declared {
+            return Ok(());
+        }
+        let (section, what, declared) = (self.section, self.what, self.declared);
+        Err(src.error(self.at, format!("{section} declares {declared} {what}s, and its blocks hold {total}")))
+    }
+}
+
 /// `$Nodes`: blocks of node tags then coordinates (then parametric coordinates, skipped).
 fn read_nodes(src: &mut Source, nodes: &mut Vec<RawNode>) -> Result<(), MeshError> {
-    let at = src.here();
-    let blocks = src.size("the number of node blocks")?;
-    let declared = src.size("the number of nodes")?;
-    src.size("the smallest node tag")?;
-    src.size("the largest node tag")?;
-    nodes.reserve(src.capacity(declared, 4 * src.min_bytes(8)));
+    let header = Header::read(src, "$Nodes", "node")?;
+    nodes.reserve(src.capacity(header.declared, 4 * src.min_bytes(8)));
     let mut total = 0u64;
-    for _ in 0..blocks {
+    for _ in 0..header.blocks {
         let block_at = src.here();
         let entity_dimension = dimension(src, "a node block's entity dimension")?;
         src.int("a node block's entity tag")?;
@@ -123,22 +153,16 @@ fn read_nodes(src: &mut Source, nodes: &mut Vec<RawNode>) -> Result<(), MeshErro
         }
         total += count;
     }
-    if total != declared {
-        return Err(src.error(at, format!("$Nodes declares {declared} nodes, and its blocks hold {total}")));
-    }
+    header.check(src, total)?;
     src.end_section("$Nodes")
 }
 
 /// `$Elements`: blocks of elements of one type on one entity.
 fn read_elements(src: &mut Source, elements: &mut Vec<RawElement>, refs: &mut EntityRefs) -> Result<(), MeshError> {
-    let at = src.here();
-    let blocks = src.size("the number of element blocks")?;
-    let declared = src.size("the number of elements")?;
-    src.size("the smallest element tag")?;
-    src.size("the largest element tag")?;
-    elements.reserve(src.capacity(declared, 2 * src.min_bytes(8)));
+    let header = Header::read(src, "$Elements", "element")?;
+    elements.reserve(src.capacity(header.declared, 2 * src.min_bytes(8)));
     let mut total = 0u64;
-    for _ in 0..blocks {
+    for _ in 0..header.blocks {
         let block_at = src.here();
         let block_dimension = dimension(src, "an element block's entity dimension")?;
         let entity = src.int("an element block's entity tag")?;
@@ -167,9 +191,7 @@ fn read_elements(src: &mut Source, elements: &mut Vec<RawElement>, refs: &mut En
         }
         total += count;
     }
-    if total != declared {
-        return Err(src.error(at, format!("$Elements declares {declared} elements, and its blocks hold {total}")));
-    }
+    header.check(src, total)?;
     src.end_section("$Elements")
 }
 
