@@ -32,7 +32,7 @@ pub(super) fn shape(corners: &[usize], nodes: &[[f64; 2]]) -> Shape {
         let previous = nodes[corners[(k + n - 1) % n]];
         let sine = unit_cross([next[0] - at[0], next[1] - at[1]], [previous[0] - at[0], previous[1] - at[1]]);
         // A NaN sine (a zero-length edge, or coordinates too far apart to subtract) is flat too.
-        if !(sine.abs() > FLAT_SINE) {
+        if sine.is_nan() || sine.abs() <= FLAT_SINE {
             return Shape::Flat { corner: k };
         }
         positive += usize::from(sine > 0.0);
