@@ -1,28 +1,31 @@
 #!/usr/bin/env bash
-# Fuzzes slipfront's three readers of untrusted input with cargo fuzz (libFuzzer):
+# Fuzzes slipfront's four readers of untrusted input with cargo fuzz (libFuzzer):
 #   case_parse  case text and --set overrides     (slipfront::fuzzing::case_parse)
 #   mcap_read   MCAP logs for check and replay    (slipfront::fuzzing::mcap_read; run it in fork mode,
 #               -fork=1, for long campaigns: Rerun's blueprint builder leaves 2 threads per replay)
 #   rrd_read    Rerun recordings for check         (slipfront::fuzzing::rrd_read)
+#   gmsh_read   Gmsh mesh files (MSH 4.1, 2.2)     (slipfront::fuzzing::gmsh_read)
 #
-# Usage: fuzz/run.sh [SECONDS_PER_TARGET] [--parallel]   (default 600; --parallel runs the three
+# Usage: fuzz/run.sh [SECONDS_PER_TARGET] [--parallel]   (default 600; --parallel runs the four
 # targets at once, at low priority, each for SECONDS of wall clock, and prints each one's final
-# stats: on 2 cores, three 30-minute runs take 30 minutes instead of 90)
+# stats: on 2 cores, four 30-minute runs take 30 minutes instead of 120)
 #
 # Needs `cargo install cargo-fuzz`. The stable toolchain builds libFuzzer's instrumentation with
 # RUSTC_BOOTSTRAP=1; no sanitizer (-s none), since the code under test is safe Rust and
-# a panic is what we look for. Corpora are seeded from the shipped cases and from short runs'
-# recordings. Crashes land in fuzz/artifacts/<target>/; once fixed, copy each into
-# fuzz/regressions/<target>/ so that `cargo test` replays it (tests/fuzz_regressions.rs).
+# a panic is what we look for. Corpora are seeded from the shipped cases, from short runs'
+# recordings and from the committed meshes (cases/meshes). Crashes land in
+# fuzz/artifacts/<target>/; once fixed, copy each into fuzz/regressions/<target>/ so that
+# `cargo test` replays it (tests/fuzz_regressions.rs).
 set -euo pipefail
 cd "$(dirname "$0")"
 seconds="${1:-600}"
 parallel="${2:-}"
 RUSTC_BOOTSTRAP=1 cargo fuzz build -s none -O --debug-assertions
 
-mkdir -p corpus/case_parse corpus/mcap_read corpus/rrd_read seeds
+mkdir -p corpus/case_parse corpus/mcap_read corpus/rrd_read corpus/gmsh_read seeds
 cp ../cases/*.toml corpus/case_parse/
 cp regressions/case_parse/* corpus/case_parse/
+cp ../cases/meshes/*.msh regressions/gmsh_read/* corpus/gmsh_read/
 # The seeds come from the main build (RUSTC_BOOTSTRAP is for the fuzz build only: set for cargo
 # in the main folder, it would change every fingerprint there and rebuild everything).
 (cd .. && env -u RUSTC_BOOTSTRAP cargo build --release --quiet --bin slipfront)
@@ -45,8 +48,8 @@ fuzz_one() {
     ls "artifacts/$1" 2>/dev/null | sed 's/^/artifact: /' || true
 }
 if [ "$parallel" = "--parallel" ]; then
-    for target in case_parse mcap_read rrd_read; do fuzz_one "$target" 19 & done
+    for target in case_parse mcap_read rrd_read gmsh_read; do fuzz_one "$target" 19 & done
     wait
 else
-    for target in case_parse mcap_read rrd_read; do fuzz_one "$target"; done
+    for target in case_parse mcap_read rrd_read gmsh_read; do fuzz_one "$target"; done
 fi

@@ -45,3 +45,24 @@ pub fn rrd_read(data: &[u8]) -> bool {
         Err(_) => false,
     }
 }
+
+/// Reading a Gmsh mesh file as a scene does: parse, then the boundary chain of the first
+/// groups. An accepted mesh is canonical: building it again from its own nodes, cells and
+/// groups gives it back unchanged.
+pub fn gmsh_read(data: &[u8]) -> bool {
+    match crate::fem::gmsh::parse(data, "input.msh") {
+        Ok(mesh) => {
+            for group in mesh.groups.iter().take(8) {
+                let _ = mesh.boundary_chain(&group.name);
+            }
+            let again = crate::fem::body_mesh::Mesh::new(mesh.nodes.clone(), mesh.cells.clone(), mesh.groups.clone());
+            let again = again.expect("a mesh that was accepted is accepted again");
+            assert_eq!((&again.nodes, &again.cells, &again.groups), (&mesh.nodes, &mesh.cells, &mesh.groups));
+            true
+        }
+        Err(e) => {
+            assert!(!e.to_string().is_empty(), "an empty error message");
+            false
+        }
+    }
+}

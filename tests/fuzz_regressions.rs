@@ -57,6 +57,21 @@ fn rrd_reading_regressions() {
 }
 
 #[test]
+fn gmsh_reading_regressions() {
+    replay("gmsh_read", slipfront::fuzzing::gmsh_read);
+    // The meshes the corpus is seeded with are all accepted.
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/meshes");
+    let mut seeds = 0;
+    for path in std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()) {
+        if path.extension().is_some_and(|x| x == "msh") {
+            seeds += 1;
+            assert!(slipfront::fuzzing::gmsh_read(&std::fs::read(&path).unwrap()), "{} was refused", path.display());
+        }
+    }
+    assert!(seeds >= 6, "the committed meshes are there ({seeds})");
+}
+
+#[test]
 fn damaged_recordings_make_check_and_figures_fail_with_a_message() {
     // Every damaged input under `fuzz/regressions/rrd_read/` through the binary's `check` and
     // `figures`: each must end within seconds with exit 1 or 2 and a message, never by a signal

@@ -158,9 +158,6 @@ impl std::fmt::Debug for LoadedMesh {
     }
 }
 
-/// The largest mesh file read (bytes): an ASCII mesh of a million nodes is about 60 MB.
-pub const MAX_MESH_BYTES: u64 = 1 << 30;
-
 impl VelocitySpec {
     fn vector(self) -> [f64; 2] {
         match self {
@@ -378,9 +375,7 @@ impl MeshSpec {
     /// refuses (its message names the file and where); the violations are the case's.
     pub fn load(&mut self, dir: &Path, friction: &toml::Table) -> Result<Vec<Violation>, String> {
         let path = dir.join(&self.file);
-        let bytes = read_mesh_file(&path)?;
-        let mesh = crate::fem::gmsh::parse(&bytes, &path.display().to_string()).map_err(|e| e.to_string())?;
-        let digest = u64::from(xxhash_rust::xxh32::xxh32(&bytes, 0));
+        let (mesh, digest) = crate::fem::gmsh::read_with_digest(&path).map_err(|e| e.to_string())?;
         let mut c = Checker::new("scene");
         let cell_material = self.cell_materials(&mesh, &mut c);
         let mut boundary_nodes = Vec::new();
@@ -645,15 +640,3 @@ fn centre(mesh: &Mesh, cell: usize) -> String {
     format!("({}, {})", shortest(mean(0)), shortest(mean(1)))
 }
 
-/// The bytes of a mesh file: a regular file of at most [`MAX_MESH_BYTES`].
-fn read_mesh_file(path: &Path) -> Result<Vec<u8>, String> {
-    let name = path.display();
-    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read mesh file {name}: {e}"))?;
-    if !meta.is_file() {
-        return Err(format!("mesh file {name} is not a regular file; scene.file names a Gmsh .msh file"));
-    }
-    if meta.len() > MAX_MESH_BYTES {
-        return Err(format!("mesh file {name} is larger than {} MiB", MAX_MESH_BYTES >> 20));
-    }
-    std::fs::read(path).map_err(|e| format!("cannot read mesh file {name}: {e}"))
-}

@@ -31,5 +31,20 @@ pub fn rectangle(width: f64, height: f64, nx: usize, ny: usize) -> Mesh {
         side(TOP, 4, (0..nx).map(|i| [node(i, ny), node(i + 1, ny)]).collect()),
         side(LEFT, 5, (0..ny).map(|j| [node(0, j), node(0, j + 1)]).collect()),
     ];
-    Mesh { nodes, cells, groups, node_tags: Vec::new() }
+    Mesh { nodes, cells, groups, node_tags: Vec::new(), cell_tags: Vec::new() }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rectangle is built in the canonical order that [`Mesh::new`] gives any mesh, so it
+    /// skips the sorting: building it through `Mesh::new` changes nothing.
+    #[test]
+    fn the_rectangle_is_canonical() {
+        let mesh = rectangle(10.0, 1.0, 10, 3);
+        let canonical = Mesh::new(mesh.nodes.clone(), mesh.cells.clone(), mesh.groups.clone()).unwrap();
+        assert_eq!(canonical, mesh);
+        assert_eq!(mesh.boundary_chain(BOTTOM).unwrap(), (0..=10).collect::<Vec<_>>());
+    }
 }
