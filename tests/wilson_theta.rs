@@ -2,7 +2,7 @@
 //! form with a linear jerk, on a single-degree-of-freedom oscillator `ü + ω² u = 0`.
 
 use nalgebra::{Complex, DMatrix};
-use slipfront::dynamics::{ContactBoundary, CounterBody, LinearBody, LinearSolver, Settings, System, Wilson};
+use slipfront::dynamics::{ContactBoundary, LinearBody, LinearSolver, MainBody, Settings, System, Wilson};
 use slipfront::friction::FrictionParams;
 use slipfront::linalg::sparse::SymmetricMatrix;
 
@@ -17,7 +17,7 @@ fn solver_amplification(omega: f64, linear_solver: LinearSolver) -> DMatrix<f64>
     let mut columns = Vec::new();
     for c in 0..3 {
         let body = LinearBody::new(vec![1.0], SymmetricMatrix::from_triplets(1, &[(0, 0, omega * omega)]));
-        let contact = ContactBoundary::single(FrictionParams::paper(), CounterBody::at_rest(), Vec::new(), Vec::new());
+        let contact = ContactBoundary::single(FrictionParams::paper(), MainBody::at_rest(), Vec::new(), Vec::new());
         let settings = Settings {
             theta: THETA,
             tolerance: 1e-14,
