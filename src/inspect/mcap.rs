@@ -18,6 +18,12 @@ use crate::record::mcap::{self as format, LogHeader};
 use crate::record::proto;
 use crate::record::schema::RunEnding;
 
+/// The largest MCAP log read (bytes): a log is read whole, and its frames held in memory.
+pub const MAX_LOG_BYTES: u64 = 16 << 30;
+
+/// What a log is, for the refusal of anything else.
+pub const LOG: &str = "an MCAP log is a .mcap file that slipfront wrote, read whole into memory";
+
 /// A log read back.
 #[derive(Debug, Clone)]
 pub struct Log {
@@ -46,7 +52,7 @@ struct Parts {
 
 /// Reads `path`. Errors only when nothing usable is there (not MCAP, no run header).
 pub fn read(path: &Path) -> Result<Log, ReadError> {
-    let bytes = std::fs::read(path).map_err(|e| ReadError(format!("cannot open {}: {e}", path.display())))?;
+    let bytes = crate::files::read_capped(path, MAX_LOG_BYTES, LOG).map_err(|e| ReadError(e.to_string()))?;
     from_bytes(&bytes, &path.display().to_string())
 }
 

@@ -1,6 +1,5 @@
 //! Reads a Rerun recording (`.rrd`) back into a [`Recording`].
 
-use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::Path;
 
@@ -17,8 +16,8 @@ use crate::record::schema;
 /// yields what came before, with [`Recording::problem`] saying where it stopped.
 pub fn read(path: &Path) -> Result<Recording, ReadError> {
     let open_error = |e: std::io::Error| ReadError(format!("cannot open {}: {e}", path.display()));
-    let mut file = File::open(path).map_err(open_error)?;
-    let total = file.metadata().map_err(open_error)?.len();
+    let (mut file, total) = crate::files::open_regular(path, "a recording is a .rrd file that slipfront wrote")
+        .map_err(|e| ReadError(e.to_string()))?;
     if total == 0 {
         return Err(ReadError(format!("{} is empty: no recording to read", path.display())));
     }

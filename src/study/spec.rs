@@ -101,13 +101,11 @@ pub struct Study {
 /// Reads `path` and builds every member, or says what is wrong: the key, the value and what is
 /// allowed, naming the member whose case is invalid.
 pub fn load(path: &Path) -> Result<Study, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read study file {}: {e}", path.display()))?;
+    let text = crate::files::read_text_capped(path, MAX_STUDY_BYTES, "a study file is a few kilobytes of TOML")?;
     let file: StudyFile = toml::from_str(&text).map_err(|e| format!("{}: {}", path.display(), e.message()))?;
     let name = path.file_stem().map_or_else(|| "study".into(), |s| s.to_string_lossy().into_owned());
     let case_path = path.parent().unwrap_or(Path::new(".")).join(&file.case);
-    let base = std::fs::read_to_string(&case_path).map_err(|e| {
-        format!("{}: case = \"{}\": cannot read {}: {e}", path.display(), file.case, case_path.display())
-    })?;
+    let base = case::read(&case_path).map_err(|e| format!("{}: case = \"{}\": {e}", path.display(), file.case))?;
     check_shape(&file).map_err(|e| format!("{}: {e}", path.display()))?;
     let rows = all_rows(&file);
     let per_row = file.ensemble.as_ref().map_or(1, |e| e.members);
@@ -134,6 +132,10 @@ pub fn load(path: &Path) -> Result<Study, String> {
         members,
     })
 }
+
+/// The largest study file read (bytes): a few kilobytes of TOML, a long list of `[[rows]]`
+/// included.
+pub const MAX_STUDY_BYTES: u64 = 4 << 20;
 
 /// The most members a study may have: each is validated before any runs, and each writes its
 /// own files.
