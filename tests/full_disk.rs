@@ -149,13 +149,13 @@ fn fingerprint(dir: &Path) -> Vec<String> {
 
 #[test]
 fn a_full_disk_during_a_resume_leaves_every_output_as_it_was() {
-    // The paper case to 600 s with its log (7 MB), checkpointed at 300 s, on a 12 MiB tmpfs: the
-    // resume's continued recording and log, written beside the originals, do not fit.
-    let Some(tiny) = Tiny::mount_of("resume", "12M") else { return };
-    let made = std::env::temp_dir().join(format!("slipfront-full-disk-made-{}", std::process::id()));
-    let mcap = made.join("paper_triangular.mcap");
+    // The paper case to 600 s with its log (7 MB), checkpointed at 300 s, run on a 16 MiB tmpfs,
+    // which a file then fills but for 1.5 MB: too little for the resume's continued recording
+    // and log, written beside the files they would replace.
+    let Some(tiny) = Tiny::mount_of("resume", "16M") else { return };
+    let mcap = tiny.0.join("paper_triangular.mcap");
     let (code, stderr, _) = run_into(
-        &made,
+        &tiny.0,
         &[
             "--set",
             "time.t_end=600",
@@ -167,20 +167,27 @@ fn a_full_disk_during_a_resume_leaves_every_output_as_it_was() {
         ],
     );
     assert_eq!(code, Some(0), "{stderr}");
-    for entry in std::fs::read_dir(&made).unwrap() {
-        let path = entry.unwrap().path();
-        std::fs::copy(&path, tiny.0.join(path.file_name().unwrap())).unwrap();
-    }
+    fill_but(&tiny.0.join("filler"), 1_500_000);
     let before = fingerprint(&tiny.0);
     for attempt in 1..=3 {
         let output =
             binary().arg("resume").arg(tiny.0.join("paper_triangular.300s.ckpt")).arg("--quiet").output().unwrap();
         let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(fingerprint(&tiny.0), before, "try {attempt}: the failed resume changed the outputs: {stderr}");
         assert_eq!(output.status.code(), Some(1), "try {attempt}: {stderr}");
         assert!(stderr.contains("No space left on device") && stderr.contains("nothing was changed"), "{stderr}");
-        assert_eq!(fingerprint(&tiny.0), before, "try {attempt}: the failed resume changed the outputs");
     }
     passes_check(&tiny.0.join("paper_triangular.rrd"));
+}
+
+/// Writes `path` until the disk is full, then shortens it by `free` bytes.
+fn fill_but(path: &Path, free: u64) {
+    use std::io::Write;
+    let mut file = std::fs::File::create(path).unwrap();
+    let block = vec![0u8; 1 << 16];
+    while file.write_all(&block).is_ok() {}
+    let len = file.metadata().unwrap().len();
+    file.set_len(len.saturating_sub(free)).unwrap();
 }
 
 /// `slipfront check FILE` passes.

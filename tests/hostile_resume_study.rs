@@ -223,6 +223,7 @@ fn long_resume(checkpoint: &Path) -> std::process::Child {
 fn a_resume_killed_at_any_moment_leaves_every_output_as_it_was() {
     // The resume from 300 s to 3000 s takes seconds; SIGKILL at moments from its start, while it
     // copies the earlier rows, and while it runs and checkpoints.
+    let mut last = None;
     for wait in [10, 100, 300, 600, 1000, 1600, 2400] {
         let (dir, middle) = copy_of_original(&format!("kill-{wait}"));
         let before = fingerprint(&dir);
@@ -234,22 +235,21 @@ fn a_resume_killed_at_any_moment_leaves_every_output_as_it_was() {
         let after: BTreeMap<String, String> =
             fingerprint(&dir).into_iter().filter(|(name, _)| !name.starts_with('.')).collect();
         assert_eq!(after, before, "killed after {wait} ms: the outputs changed");
-        // The files it was writing are cleared by the next resume, which ends as one run would.
-        if wait == 1000 {
-            let output = resume(&middle, &[]);
-            assert_eq!(code(&output), 0, "{}", text(&output));
-            let left: Vec<String> = fingerprint(&dir).into_keys().filter(|n| n.starts_with('.')).collect();
-            assert!(left.is_empty(), "files left behind: {left:?}");
-            for suffix in [".events.csv", ".ruptures.csv"] {
-                assert_eq!(
-                    std::fs::read(file(&dir, suffix)).unwrap(),
-                    std::fs::read(file(original(), suffix)).unwrap()
-                );
-            }
-            assert_eq!(code(&slipfront(&["check", file(&dir, ".rrd").to_str().unwrap()])), 0);
+        if let Some((dir, _)) = last.replace((dir, middle)) {
+            std::fs::remove_dir_all(dir).unwrap();
         }
-        std::fs::remove_dir_all(&dir).unwrap();
     }
+    // The files the last one was writing are cleared by the next resume, which ends as one run
+    // would.
+    let (dir, middle) = last.unwrap();
+    let output = resume(&middle, &[]);
+    assert_eq!(code(&output), 0, "{}", text(&output));
+    let left: Vec<String> = fingerprint(&dir).into_keys().filter(|n| n.starts_with('.')).collect();
+    assert!(left.is_empty(), "files left behind: {left:?}");
+    for suffix in [".events.csv", ".ruptures.csv"] {
+        assert!(std::fs::read(file(&dir, suffix)).unwrap() == std::fs::read(file(original(), suffix)).unwrap());
+    }
+    assert_eq!(code(&slipfront(&["check", file(&dir, ".rrd").to_str().unwrap()])), 0);
 }
 
 #[test]
@@ -290,12 +290,25 @@ fn bounded(mut command: Command, limit: Duration) -> (Output, bool) {
     (child.wait_with_output().unwrap(), ended)
 }
 
-/// `slipfront ARGS` ends within 10 s, refused with exit 2 and `says`.
+/// The largest resident set (bytes) of any child process of the tests so far.
+fn largest_child() -> u64 {
+    // SAFETY: getrusage writes the struct it is given.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    assert_eq!(unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) }, 0);
+    usage.ru_maxrss as u64 * 1024
+}
+
+/// The most memory a refusal may take: far below what reading a device for seconds takes,
+/// far above what any command of these tests needs (the paper case runs in 200 MB).
+const REFUSAL_MEMORY: u64 = 2 << 30;
+
+/// `slipfront ARGS` ends within 10 s, without reading gigabytes, refused with exit 2 and `says`.
 fn refused_at_once(args: &[&str], says: &str) {
     let mut command = binary();
     command.args(args);
     let (output, ended) = bounded(command, Duration::from_secs(10));
     assert!(ended, "slipfront {args:?} was still reading after 10 s");
+    assert!(largest_child() < REFUSAL_MEMORY, "slipfront {args:?} read {} MB", largest_child() >> 20);
     assert_invalid(&output, says);
 }
 
@@ -318,16 +331,16 @@ fn every_reader_refuses_a_device_a_pipe_or_an_oversized_file_before_reading_it()
     let rrd = recording.to_str().unwrap();
     for input in ["/dev/zero", pipe] {
         let what = if input == pipe { "a named pipe (FIFO), not a regular file" } else { "a character device" };
-        refused_at_once(&["run", input, "--out-dir", dir.to_str().unwrap()], what);
         refused_at_once(&["resume", input], what);
-        refused_at_once(&["check", rrd, "--expect", input], what);
-        refused_at_once(&["check", input], what);
-        refused_at_once(&["figures", input, "--out", dir.to_str().unwrap()], what);
-        refused_at_once(&["replay", input], what);
-        refused_at_once(&["study", input, "--out-dir", dir.to_str().unwrap()], what);
         let study = dir.join("s.toml");
         std::fs::write(&study, format!("case = \"{input}\"\n")).unwrap();
         refused_at_once(&["study", study.to_str().unwrap(), "--out-dir", dir.to_str().unwrap()], what);
+        refused_at_once(&["check", rrd, "--expect", input], what);
+        refused_at_once(&["study", input, "--out-dir", dir.to_str().unwrap()], what);
+        refused_at_once(&["check", input], what);
+        refused_at_once(&["figures", input, "--out", dir.to_str().unwrap()], what);
+        refused_at_once(&["replay", input], what);
+        refused_at_once(&["run", input, "--out-dir", dir.to_str().unwrap()], what);
     }
     // Regular files over their caps (sparse: nothing is written, and nothing must be read).
     for (name, size, args, says) in [
@@ -357,6 +370,7 @@ fn a_study_resume_over_a_record_linked_to_a_device_runs_the_member_again() {
     command.arg("study").arg(&study).arg("--out-dir").arg(&out).arg("--resume");
     let (output, ended) = bounded(command, Duration::from_secs(20));
     assert!(ended, "study --resume read /dev/zero for 20 s");
+    assert!(largest_child() < REFUSAL_MEMORY, "study --resume read {} MB", largest_child() >> 20);
     assert_eq!(code(&output), 0, "{}", text(&output));
     assert!(text(&output).contains("1 whose record or outputs do not verify"), "{}", text(&output));
     assert!(text(&output).contains("a character device"), "{}", text(&output));
@@ -472,8 +486,6 @@ fn study_resume_runs_again_every_member_whose_record_or_outputs_do_not_verify() 
     let output = study_command(&study, &clean, &["--quiet"]);
     assert_eq!(code(&output), 0, "{}", text(&output));
     let expected = tables(&clean.join("paper"));
-    let summary = String::from_utf8(expected["summary.md"].clone()).unwrap();
-    assert!(summary.contains("4 of 4 members finished, 0 failed"), "{summary}");
 
     let out = dir.join("out");
     copy_folder(&clean.join("paper"), &out.join("paper"));
@@ -496,12 +508,14 @@ fn study_resume_runs_again_every_member_whose_record_or_outputs_do_not_verify() 
     let output = study_command(&study, &out, &["--resume"]);
     let said = text(&output);
     assert_eq!(code(&output), 0, "{said}");
+    assert!(tables(&folder) == expected, "the study mixed what did not verify into its tables: {said}");
     assert!(
         said.contains("--resume: 0 members verified and kept; to run: 4 whose record or outputs do not verify"),
         "{said}"
     );
     assert!(said.contains("member-0000.done.toml was changed after its member ran"), "{said}");
-    assert_eq!(tables(&folder), expected, "the study mixed what did not verify into its tables");
+    let summary = String::from_utf8(expected["summary.md"].clone()).unwrap();
+    assert!(summary.contains("4 of 4 members finished, 0 failed"), "{summary}");
     // A record of member 99 resealed, so that it verifies as a record: another member's.
     resealed(&record(1), |t| {
         t.insert("index".into(), toml::Value::Integer(99));
