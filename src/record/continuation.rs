@@ -104,7 +104,12 @@ pub fn verify_log(
                 "{name} is the MCAP log of another run (recording id {id}; the checkpoint's run is {recording_id})"
             ));
         }
-        None => return Err(format!("{name} has no readable run header at {TOPIC_RUN}: it is not this run's log")),
+        None => {
+            return Err(match &scanned.problem {
+                Some(problem) => format!("{name} is cut short or damaged before the checkpoint ({problem})"),
+                None => format!("{name} has no readable run header at {TOPIC_RUN}: it is not this run's log"),
+            });
+        }
     }
     for (topic, digest) in digests {
         let (count, found) = &scanned.topics[topic.as_str()];
