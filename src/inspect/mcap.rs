@@ -52,6 +52,15 @@ struct Parts {
 
 /// Reads `path`. Errors only when nothing usable is there (not MCAP, no run header).
 pub fn read(path: &Path) -> Result<Log, ReadError> {
+    // Whatever does not start as an MCAP file does is refused before it is read whole.
+    let (mut file, len) = crate::files::open_regular(path, LOG).map_err(|e| ReadError(e.to_string()))?;
+    let mut magic = [0u8; 8];
+    if len >= 8 && (std::io::Read::read_exact(&mut file, &mut magic).is_err() || magic != *mcap::MAGIC) {
+        return Err(ReadError(format!(
+            "{} is not an MCAP file: it does not start with the MCAP magic",
+            path.display()
+        )));
+    }
     let bytes = crate::files::read_capped(path, MAX_LOG_BYTES, LOG).map_err(|e| ReadError(e.to_string()))?;
     from_bytes(&bytes, &path.display().to_string())
 }
