@@ -445,7 +445,7 @@ fn hostile_files() {
     expect_invalid(&empty, &[], "missing field `friction`");
     let binary = write("binary.toml", &[0xff, 0xfe, 0x00, 0x80, 0x41]);
     expect_invalid(&binary, &[], "it is not UTF-8 text");
-    expect_invalid(dir.to_str().unwrap(), &[], "Is a directory");
+    expect_invalid(dir.to_str().unwrap(), &[], "it is a folder, not a regular file");
     let no_kind = write("no_kind.toml", text.replace("kind = \"spring_block\"", "").as_bytes());
     expect_invalid(&no_kind, &[], "missing field `kind`");
     let no_mass = write("no_mass.toml", text.replace("mass = 1000.0", "").as_bytes());
