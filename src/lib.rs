@@ -20,6 +20,7 @@ pub mod catalog;
 pub mod cli;
 pub mod dynamics;
 pub mod fem;
+pub mod files;
 pub mod frame;
 pub mod friction;
 pub mod fuzzing;

@@ -111,7 +111,7 @@ fn time_rules() {
     expect_invalid(
         &case("point_loading.toml"),
         &["time.tolerance=1e-6"],
-        "time.tolerance = 0.000001 is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
+        "time.tolerance = 0.000001 is for dynamic scenes (spring_block, block, mesh); a point scene prescribes its motion",
     );
     expect_invalid(
         &c,
@@ -138,17 +138,17 @@ fn time_rules() {
     expect_invalid(
         &case("point_loading.toml"),
         &["time.integrator=central"],
-        "time.integrator = central is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
+        "time.integrator = central is for dynamic scenes (spring_block, block, mesh); a point scene prescribes its motion",
     );
     expect_invalid(
         &case("point_loading.toml"),
         &["time.integrator=tsit5"],
-        "time.integrator = tsit5 is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
+        "time.integrator = tsit5 is for dynamic scenes (spring_block, block, mesh); a point scene prescribes its motion",
     );
     expect_invalid(
         &case("point_loading.toml"),
         &["time.integrator=sdirk4"],
-        "time.integrator = sdirk4 is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
+        "time.integrator = sdirk4 is for dynamic scenes (spring_block, block, mesh); a point scene prescribes its motion",
     );
     expect_invalid(
         &c,
@@ -181,7 +181,7 @@ fn scene_rules() {
     expect_invalid(
         &sb,
         &["probes.nodes=[{name=\"N\", index=0}]"],
-        "probes.nodes[0].index = 0 is not allowed: a spring_block scene has no nodes",
+        "probes.nodes[0] = \"N\" is not allowed: a spring_block scene has no nodes",
     );
 
     let pt = case("point_loading.toml");
@@ -225,9 +225,16 @@ fn block_rules() {
     expect_invalid(
         &b,
         &["probes.segments=[{name=\"Z\", index=10}]"],
-        "probes.segments[0].index = 10 must be below 10 (the scene has 10 segments, numbered from 0 at the left)",
+        "probes.segments[0].index = 10 must be below 10 (the scene has 10 segments, numbered from 0 along its contacts)",
     );
     expect_invalid(&b, &["probes.nodes=[{name=\" \", index=3}]"], "probes.nodes[0].name = \" \" must not be empty");
+    expect_invalid(
+        &b,
+        &["probes.segments=[{name=\"Z\", index=2, x=2.5}]"],
+        "probes.segments[0] = \"Z\" must give exactly one of index (its number), x (m) or at ([x, y] in m)",
+    );
+    expect_invalid(&b, &["probes.nodes=[{name=\"N\", x=nan}]"], "probes.nodes[0].x = NaN must be a finite number");
+    expect_invalid(&b, &["probes.nodes=[{name=\"N\", at=[1, inf]}]"], "probes.nodes[0].at[1] = inf must be a finite number");
 }
 
 #[test]
@@ -238,7 +245,7 @@ fn record_rules() {
     expect_invalid(
         &b,
         &["record.segments=[3, 12]"],
-        "record.segments[1] = 12 must be below 10 (the scene has 10 segments, numbered from 0 at the left)",
+        "record.segments[1] = 12 must be below 10 (the scene has 10 segments, numbered from 0 along its contacts)",
     );
     expect_invalid(
         &case("spring_block.toml"),
@@ -332,7 +339,7 @@ fn malformed_files_and_overrides() {
     expect_invalid(
         &c,
         &["scene.kind=\"pendulum\""],
-        "scene.kind: unknown variant `pendulum`, expected one of `point`, `spring_block`, `block`",
+        "scene.kind: unknown variant `pendulum`, expected one of `point`, `spring_block`, `block`, `mesh`",
     );
     expect_invalid(&c, &["time.dt=[1, 2]"], "time.dt: invalid type: sequence, expected f64");
     expect_invalid(
@@ -465,7 +472,7 @@ fn hostile_files() {
     expect_invalid(&empty, &[], "missing field `friction`");
     let binary = write("binary.toml", &[0xff, 0xfe, 0x00, 0x80, 0x41]);
     expect_invalid(&binary, &[], "it is not UTF-8 text");
-    expect_invalid(dir.to_str().unwrap(), &[], "Is a directory");
+    expect_invalid(dir.to_str().unwrap(), &[], "it is a folder, not a regular file");
     let no_kind = write("no_kind.toml", text.replace("kind = \"spring_block\"", "").as_bytes());
     expect_invalid(&no_kind, &[], "missing field `kind`");
     let no_mass = write("no_mass.toml", text.replace("mass = 1000.0", "").as_bytes());

@@ -1,7 +1,8 @@
 //! A full disk stops a run, never hangs it: on a 1 MiB tmpfs the paper case, with and without
 //! an MCAP log, ends every time within seconds with exit 1 and the operating system's "No space
 //! left on device", its catalogs finished, and its recording and log readable and valid up to
-//! their last row (`slipfront check --partial`).
+//! their last row (`slipfront check --partial`). A resume that fills the disk leaves every file
+//! it would have replaced as it was.
 //!
 //! Rerun's own file writer hung here in some tries (its writer thread ended at the error while
 //! a flush waited on it for ever), and in the others reported "File-writer thread shut down
@@ -19,15 +20,19 @@ use std::time::{Duration, Instant};
 
 use common::{binary, case_path};
 
-/// A 1 MiB tmpfs mounted for the test, unmounted when dropped.
+/// A small tmpfs (1 MiB unless said) mounted for the test, unmounted when dropped.
 struct Tiny(PathBuf);
 
 impl Tiny {
     fn mount(tag: &str) -> Option<Self> {
+        Self::mount_of(tag, "1M")
+    }
+
+    fn mount_of(tag: &str, size: &str) -> Option<Self> {
         let dir = std::env::temp_dir().join(format!("slipfront-full-disk-{tag}-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let mounted = Command::new("mount")
-            .args(["-t", "tmpfs", "-o", "size=1M", "tmpfs"])
+            .args(["-t", "tmpfs", "-o", &format!("size={size}"), "tmpfs"])
             .arg(&dir)
             .stderr(Stdio::null())
             .status()
@@ -131,4 +136,62 @@ fn a_full_disk_stops_the_run_with_the_os_error_twenty_times_in_a_row() {
 #[test]
 fn a_full_disk_stops_the_run_and_its_mcap_log_twenty_times_in_a_row() {
     twenty_tries(true);
+}
+
+/// The sha256 of every file in `dir`, by name.
+fn fingerprint(dir: &Path) -> Vec<String> {
+    let mut names: Vec<PathBuf> = std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()).collect();
+    names.sort();
+    let output = Command::new("sha256sum").args(&names).output().unwrap();
+    assert!(output.status.success());
+    String::from_utf8(output.stdout).unwrap().lines().map(str::to_string).collect()
+}
+
+#[test]
+fn a_full_disk_during_a_resume_leaves_every_output_as_it_was() {
+    // The paper case to 600 s with its log (7 MB), checkpointed at 300 s, run on a 16 MiB tmpfs,
+    // which a file then fills but for 1.5 MB: too little for the resume's continued recording
+    // and log, written beside the files they would replace.
+    let Some(tiny) = Tiny::mount_of("resume", "16M") else { return };
+    let mcap = tiny.0.join("paper_triangular.mcap");
+    let (code, stderr, _) = run_into(
+        &tiny.0,
+        &[
+            "--set",
+            "time.t_end=600",
+            "--checkpoint-every",
+            "300",
+            "--keep-checkpoints",
+            "--mcap",
+            mcap.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(code, Some(0), "{stderr}");
+    fill_but(&tiny.0.join("filler"), 1_500_000);
+    let before = fingerprint(&tiny.0);
+    for attempt in 1..=3 {
+        let output =
+            binary().arg("resume").arg(tiny.0.join("paper_triangular.300s.ckpt")).arg("--quiet").output().unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(fingerprint(&tiny.0), before, "try {attempt}: the failed resume changed the outputs: {stderr}");
+        assert_eq!(output.status.code(), Some(1), "try {attempt}: {stderr}");
+        assert!(stderr.contains("No space left on device") && stderr.contains("nothing was changed"), "{stderr}");
+    }
+    passes_check(&tiny.0.join("paper_triangular.rrd"));
+}
+
+/// Writes `path` until the disk is full, then shortens it by `free` bytes.
+fn fill_but(path: &Path, free: u64) {
+    use std::io::Write;
+    let mut file = std::fs::File::create(path).unwrap();
+    let block = vec![0u8; 1 << 16];
+    while file.write_all(&block).is_ok() {}
+    let len = file.metadata().unwrap().len();
+    file.set_len(len.saturating_sub(free)).unwrap();
+}
+
+/// `slipfront check FILE` passes.
+fn passes_check(path: &Path) {
+    let output = binary().arg("check").arg(path).output().unwrap();
+    assert!(output.status.success(), "check {}: {}", path.display(), String::from_utf8_lossy(&output.stdout));
 }

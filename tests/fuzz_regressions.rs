@@ -82,7 +82,7 @@ fn damaged_recordings_make_check_and_figures_fail_with_a_message() {
     let inputs = inputs("rrd_read");
     let out = std::env::temp_dir().join(format!("slipfront-rrd-check-{}", std::process::id()));
     let mut damaged = 0;
-    // `bad-old-layout.rrd` is whole, in an older layout that `check` refuses and `figures` draws.
+    // `bad-old-layout.rrd` is whole, in an older layout that `check` and `figures` refuse.
     let is_damaged = |p: &std::path::Path| {
         let name = p.file_name().unwrap().to_string_lossy();
         !name.starts_with("ok-") && name != "bad-old-layout.rrd"

@@ -11,7 +11,6 @@ pub mod profile;
 pub mod spec;
 
 use std::fmt;
-use std::io::Read;
 use std::path::Path;
 
 pub use spec::*;
@@ -23,21 +22,16 @@ use crate::validate::{Checker, Violation, shortest};
 
 /// Reads, overrides, parses and validates a case file.
 pub fn load(path: &Path, overrides: &[String]) -> Result<Case, CaseError> {
-    let io = |message: String| CaseError::Io { path: path.display().to_string(), message };
-    let file = std::fs::File::open(path).map_err(|e| io(e.to_string()))?;
-    // Read at most one byte past the cap: `/dev/zero` or a stray data file is refused, not read
-    // until memory runs out.
-    let mut bytes = Vec::new();
-    file.take(MAX_CASE_BYTES + 1).read_to_end(&mut bytes).map_err(|e| io(e.to_string()))?;
-    if bytes.len() as u64 > MAX_CASE_BYTES {
-        return Err(io(format!(
-            "it is larger than {} MiB; a case file is a few kilobytes of TOML",
-            MAX_CASE_BYTES >> 20
-        )));
-    }
-    let text = String::from_utf8(bytes).map_err(|e| io(format!("it is not UTF-8 text ({e})")))?;
     let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    from_str_at(&text, overrides, dir)
+    from_str_at(&read(path)?, overrides, dir)
+}
+
+/// The text of a case file, refused unless it is a regular file of at most [`MAX_CASE_BYTES`]
+/// ([`crate::files`]): `/dev/zero`, a named pipe or a stray data file is refused, not read until
+/// memory runs out or for ever.
+pub fn read(path: &Path) -> Result<String, CaseError> {
+    crate::files::read_text_capped(path, MAX_CASE_BYTES, "a case file is a few kilobytes of TOML")
+        .map_err(|e| CaseError::Io { path: path.display().to_string(), message: e.reason })
 }
 
 /// The largest case file read (bytes). The shipped cases are under 5 kB; a probe list of every
@@ -106,14 +100,14 @@ impl Case {
             time.fail(
                 "tolerance",
                 tolerance,
-                "is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
+                "is for dynamic scenes (spring_block, block, mesh); a point scene prescribes its motion",
             );
         }
         if let (false, SceneSpec::Point(_)) = (self.time.method.steps_a_point(), &self.scene) {
             time.fail(
                 "integrator",
                 self.time.method.name(),
-                "is for dynamic scenes (spring_block, block); a point scene prescribes its motion",
+                "is for dynamic scenes (spring_block, block, mesh); a point scene prescribes its motion",
             );
         }
         all.extend(time.violations);

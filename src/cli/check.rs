@@ -9,7 +9,7 @@ use clap::Args;
 use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, fail, print};
 use crate::cli::isolated;
 use crate::inspect;
-use crate::inspect::check::{Expectations, Report, check, check_partial};
+use crate::inspect::check::{Expectations, Report, check, check_partial, unknown_series};
 use crate::study::replay;
 
 #[derive(Debug, Args)]
@@ -30,6 +30,9 @@ pub struct CheckArgs {
 
 /// Runs `slipfront check`.
 pub fn command(args: CheckArgs) -> ExitCode {
+    if let Err(e) = crate::files::open_regular(&args.recording, RECORDING) {
+        return fail(EXIT_INVALID, e);
+    }
     let expect = match &args.expect {
         Some(path) => match Expectations::load(path) {
             Ok(e) => e,
@@ -47,6 +50,9 @@ pub fn command(args: CheckArgs) -> ExitCode {
             Ok(r) => r,
             Err(e) => return fail(EXIT_INVALID, e),
         };
+        if let Some(e) = unknown_series(&recording, &expect) {
+            return fail(EXIT_INVALID, format!("{}: {e}", args.expect.unwrap_or_default().display()));
+        }
         let mut report = judge(&recording, &expect, args.partial);
         report.summary.insert(0, format!("MCAP log: {} messages, {} recorded steps", log.messages, log.frames.len()));
         match &log.problem {
@@ -69,16 +75,23 @@ pub fn command(args: CheckArgs) -> ExitCode {
                 Err(exit) => exit,
             };
         }
-        match inspect::rrd::read(&args.recording) {
-            Ok(recording) => judge(&recording, &expect, args.partial),
+        let recording = match inspect::rrd::read(&args.recording) {
+            Ok(recording) => recording,
             Err(e) => return fail(EXIT_INVALID, e),
+        };
+        if let Some(e) = unknown_series(&recording, &expect) {
+            return fail(EXIT_INVALID, format!("{}: {e}", args.expect.unwrap_or_default().display()));
         }
+        judge(&recording, &expect, args.partial)
     };
     if let Err(exit) = print(&report.render()) {
         return exit;
     }
     if report.passed() { ExitCode::SUCCESS } else { ExitCode::from(EXIT_FAILED) }
 }
+
+/// What `check` and `figures` read, for the refusal of anything else.
+pub(crate) const RECORDING: &str = "a recording is a .rrd file (or an MCAP log, .mcap) that slipfront wrote";
 
 /// [`check`], or with `partial` [`check_partial`].
 fn judge(recording: &inspect::Recording, expect: &Expectations, partial: bool) -> Report {

@@ -5,8 +5,11 @@ use std::process::ExitCode;
 
 use clap::Args;
 
+use crate::cli::check::RECORDING;
 use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, fail, print};
 use crate::inspect;
+use crate::inspect::check::{Expectations, check, check_partial};
+use crate::record::schema::RUN_ENDING;
 use crate::study::figures;
 
 #[derive(Debug, Args)]
@@ -16,10 +19,19 @@ pub struct FiguresArgs {
     /// Folder for the PNG files (created if missing).
     #[arg(long, value_name = "DIR", default_value = "recordings")]
     pub out: PathBuf,
+    /// Draw a file that may end early (a run killed before it wrote its ending), judged as
+    /// `check --partial` judges it.
+    #[arg(long)]
+    pub partial: bool,
 }
 
-/// Runs `slipfront figures`.
+/// Runs `slipfront figures`: a recording that `check` (or with `--partial`, `check --partial`)
+/// would fail is refused, exit 1, with no figures drawn: figures of a damaged file would show
+/// the damage as data.
 pub fn command(args: FiguresArgs) -> ExitCode {
+    if let Err(e) = crate::files::open_regular(&args.recording, RECORDING) {
+        return fail(EXIT_INVALID, e);
+    }
     if let Some(failure) = crate::cli::isolated::decoder_failure(&args.recording) {
         return fail(EXIT_FAILED, format!("{failure}; no figures drawn"));
     }
@@ -27,27 +39,28 @@ pub fn command(args: FiguresArgs) -> ExitCode {
         Ok(r) => r,
         Err(e) => return fail(EXIT_INVALID, e),
     };
+    let expect = Expectations::default();
+    let report = if args.partial { check_partial(&recording, &expect) } else { check(&recording, &expect) };
+    if !report.passed() {
+        let early = if args.partial || recording.static_texts.contains_key(RUN_ENDING) {
+            ""
+        } else {
+            " (a file cut off before its run ended is drawn with --partial)"
+        };
+        return fail(
+            EXIT_FAILED,
+            format!(
+                "{} fails `slipfront check`: {}; no figures drawn{early}",
+                args.recording.display(),
+                report.problems.join("; ")
+            ),
+        );
+    }
     match figures::write_figures(&recording, &args.out) {
         Ok(paths) => {
             let listing: String = paths.iter().map(|path| format!("{}\n", path.display())).collect();
-            if let Err(exit) = print(&listing) {
-                return exit;
-            }
-            // Figures drawn from a damaged file show what came before the damage: say so.
-            match &recording.problem {
-                Some(problem) => fail(
-                    EXIT_FAILED,
-                    format!("{} is damaged ({problem}); the figures show what came before", args.recording.display()),
-                ),
-                None => ExitCode::SUCCESS,
-            }
+            print(&listing).err().unwrap_or(ExitCode::SUCCESS)
         }
-        // Nothing to draw: the damage, if any, is why.
-        Err(e) => match &recording.problem {
-            Some(problem) => {
-                fail(EXIT_FAILED, format!("{} is damaged ({problem}): {e}; no figures drawn", args.recording.display()))
-            }
-            None => fail(EXIT_FAILED, e),
-        },
+        Err(e) => fail(EXIT_FAILED, e),
     }
 }

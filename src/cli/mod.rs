@@ -51,9 +51,12 @@ pub enum Command {
     /// its end or, with --set time.t_end=T, beyond it.
     ///
     /// The recording, MCAP log and catalogs are left as those of one uninterrupted run (same
-    /// recording id; the parts written after the checkpoint are written again). Exit codes as
-    /// for `run`; 2 also for a checkpoint that is not one, is damaged, cut short, of another
-    /// version, or does not fit its case.
+    /// recording id; the parts written after the checkpoint are written again), written beside
+    /// them and put in place once finished: a resume that is refused, fails to write or is
+    /// killed leaves every output as it was. Exit codes as for `run`; 2 also for a checkpoint
+    /// that is not one, is damaged, cut short, of another version, or does not fit its case, and
+    /// for a recording or log beside it that is missing, another run's, or cut or damaged before
+    /// the checkpoint.
     Resume(ResumeArgs),
     /// Check a recording: the schema's entities, sim_time monotonic and covering the run, no NaN
     /// or Inf, equal row counts, the stored blueprint, and optional expectations.
@@ -81,9 +84,10 @@ pub enum Command {
     /// recording and catalogs, events.csv (every member's events, its parameters as columns),
     /// summary.md and summary.png.
     ///
-    /// Exit codes: 0 every selected member ran, 1 a member could not be written, 2 an invalid
-    /// study file or argument (nothing runs), 130/143 interrupted (finished members are kept;
-    /// --resume runs the rest).
+    /// Exit codes: 0 every selected member finished, 1 a member failed (listed in summary.md)
+    /// or could not be written, 2 an invalid study file or argument, or another study writing
+    /// the folder (nothing runs), 130/143 interrupted (finished members are kept; --resume runs
+    /// the rest).
     Study(StudyArgs),
     /// Open a recording in the Rerun viewer with its time cursor at a chosen simulated time
     /// (--at SECONDS), through a blueprint file written beside it.

@@ -4,7 +4,8 @@
 //! (the case file, the MCAP log being replayed), or where an output's folder does not exist or
 //! cannot be written. While the command runs it holds an exclusive lock on each output: a
 //! second run writing the same file is refused at once, naming the file, instead of
-//! interleaving its writes with the first's.
+//! interleaving its writes with the first's. A study holds a lock on its whole folder
+//! ([`claim_folder`]).
 
 use std::fs::{File, OpenOptions, TryLockError};
 use std::path::{Path, PathBuf};
@@ -112,9 +113,12 @@ fn check_folder(output: &Named<'_>) -> Result<(), String> {
         .map_err(|e| format!("{} {}: cannot write in {}: {e}", output.role, output.path.display(), folder.display()))
 }
 
-/// A file can be created (and removed) in `dir`.
+/// A file can be created (and removed) in `dir`. The probe's name is this call's own, so that
+/// threads checking one folder at once (a study's members) do not remove each other's.
 pub fn check_writable(dir: &Path) -> std::io::Result<()> {
-    let probe = dir.join(format!(".slipfront-write-test-{}", std::process::id()));
+    static PROBES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = PROBES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let probe = dir.join(format!(".slipfront-write-test-{}-{n}", std::process::id()));
     std::fs::write(&probe, b"")?;
     std::fs::remove_file(&probe)
 }
@@ -132,5 +136,25 @@ fn lock(output: &Named<'_>) -> Result<Held, String> {
             output.path.display()
         )),
         Err(TryLockError::Error(e)) => Err(describe(e)),
+    }
+}
+
+/// A lock on a folder, held until dropped.
+pub struct FolderLock(#[allow(dead_code)] File);
+
+/// Locks the folder `dir` for a command that owns it (a study): exclusively, or with `shared`
+/// alongside the other holders of a shared lock (the shards of one study, each of which claims
+/// its own members' files). A second owner is refused at once, as a second writer of a file is.
+pub fn claim_folder(dir: &Path, shared: bool) -> Result<FolderLock, String> {
+    let folder = File::open(dir).map_err(|e| format!("cannot open {}: {e}", dir.display()))?;
+    let locked = if shared { folder.try_lock_shared() } else { folder.try_lock() };
+    match locked {
+        Ok(()) => Ok(FolderLock(folder)),
+        Err(TryLockError::WouldBlock) => Err(format!(
+            "{} is being written by another slipfront study: wait for it to end, or give another --out-dir \
+             (the shards of one study, --shard I/N, may share a folder)",
+            dir.display()
+        )),
+        Err(TryLockError::Error(e)) => Err(format!("cannot lock {}: {e}", dir.display())),
     }
 }

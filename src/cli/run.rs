@@ -194,8 +194,7 @@ impl Outputs {
     /// the outputs go, the recording id and the interval.
     fn saver(&self, args: &RunArgs, case: &case::Case) -> Result<Option<Saver>, ExitCode> {
         let Some(every) = self.every else { return Ok(None) };
-        let text = std::fs::read_to_string(&args.case)
-            .map_err(|e| fail(EXIT_INVALID, format!("{}: {e}", args.case.display())))?;
+        let text = case::read(&args.case).map_err(|e| fail(EXIT_INVALID, e))?;
         let info = CheckpointInfo {
             written_by: env!("CARGO_PKG_VERSION").into(),
             case: SavedCase {

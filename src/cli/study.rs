@@ -2,15 +2,17 @@
 //! cores (or a shard of them, for a batch scheduler), into one folder that a Rerun server reads
 //! as one dataset, with a table of every member's events and a summary.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Args;
 
 use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, fail, print};
+use crate::cli::outputs::claim_folder;
 use crate::cli::signals::Stop;
-use crate::study::runner::{Options, run_members};
-use crate::study::spec::{self, Shard};
+use crate::study::record::DONE;
+use crate::study::runner::{Options, members, plan, run_members};
+use crate::study::spec::{self, Shard, Study};
 use crate::study::summary;
 
 #[derive(Debug, Args)]
@@ -29,7 +31,8 @@ pub struct StudyArgs {
     /// The study's outputs go into <out-dir>/<study-stem>/.
     #[arg(long, value_name = "DIR", default_value = "recordings")]
     pub out_dir: PathBuf,
-    /// Skip members whose outputs are complete (their <member>.done.toml exists).
+    /// Skip the members that are done: whose record (<member>.done.toml) and outputs verify and
+    /// whose parameters are the study file's. Every other member runs again, failed ones too.
     #[arg(long)]
     pub resume: bool,
     /// Print nothing but errors.
@@ -50,32 +53,75 @@ pub fn command(args: StudyArgs) -> ExitCode {
     if let Err(e) = std::fs::create_dir_all(&dir) {
         return fail(EXIT_INVALID, format!("cannot create the study's folder {}: {e}", dir.display()));
     }
+    let _folder = match claim_folder(&dir, args.shard.is_some()) {
+        Ok(lock) => lock,
+        Err(e) => return fail(EXIT_INVALID, e),
+    };
     let selected: Vec<_> = study.members.iter().filter(|m| args.shard.is_none_or(|s| s.holds(m.index))).collect();
+    let (todo, plan) = plan(&study, &selected, &dir, args.resume);
+    if args.resume && !args.quiet {
+        eprintln!("slipfront study {}: {}", study.name, plan.describe());
+    }
     let jobs = args.jobs.unwrap_or_else(crate::study::ensemble::available_threads);
     let stop = Stop::catch();
-    let options = Options { jobs, resume: args.resume, progress: !args.quiet, interrupt: Some(&stop.flag) };
-    let ran = run_members(&study, &selected, &dir, &options);
-    let finished = match summary::write(&study, &dir) {
-        Ok(finished) => finished,
-        Err(e) => return fail(EXIT_FAILED, e),
-    };
-    let (ran, skipped) = match ran {
+    let options = Options { jobs, progress: !args.quiet, interrupt: Some(&stop.flag) };
+    let ran = run_members(&study, &todo, &dir, &options);
+    let counts = match summary::write(&study, &dir) {
         Ok(counts) => counts,
-        Err(e) => return fail(EXIT_FAILED, format!("study {}: {e}", study.name)),
+        Err(e) => return fail(EXIT_FAILED, e),
     };
     if stop.requested() {
         let (code, name) = stop.exit();
         return fail(code, format!("interrupted by {name}; rerun with --resume to run the members left"));
     }
-    if args.quiet {
-        return ExitCode::SUCCESS;
+    if let Some(first) = ran.busy.first() {
+        return fail(
+            EXIT_INVALID,
+            format!("{} not run: their outputs could not be claimed ({first})", members(ran.busy.len())),
+        );
     }
-    let line = format!(
-        "slipfront study {}: {ran} members run, {skipped} already done; {finished} of {} finished in {} \
-         (summary.md, events.csv)\n",
-        study.name,
-        study.members.len(),
-        dir.display()
-    );
-    print(&line).err().unwrap_or(ExitCode::SUCCESS)
+    if let Some(first) = ran.unwritable.first() {
+        return fail(EXIT_FAILED, format!("{} left no record ({first})", members(ran.unwritable.len())));
+    }
+    if !args.quiet {
+        let orphans = orphaned_records(&study, &dir);
+        let left_out = match orphans {
+            0 => String::new(),
+            n => format!("; {n} records of members the study no longer has are left out"),
+        };
+        let line = format!(
+            "slipfront study {}: {} run ({} failed), {} verified and kept; {} of {} finished, {} failed in {} \
+             (summary.md, events.csv){left_out}\n",
+            study.name,
+            members(ran.ran),
+            ran.failed,
+            plan.kept,
+            counts.finished,
+            study.members.len(),
+            counts.failed,
+            dir.display()
+        );
+        if let Err(exit) = print(&line) {
+            return exit;
+        }
+    }
+    if ran.failed > 0 {
+        return fail(
+            EXIT_FAILED,
+            format!("{} failed (their errors are in summary.md); --resume runs them again", members(ran.failed)),
+        );
+    }
+    ExitCode::SUCCESS
+}
+
+/// Records in `dir` of members `study` does not have (the study file was edited to fewer).
+fn orphaned_records(study: &Study, dir: &Path) -> usize {
+    let names: std::collections::BTreeSet<String> = study.members.iter().map(|m| format!("{}{DONE}", m.name)).collect();
+    std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("member-") && n.ends_with(DONE) && !names.contains(n))
+        .count()
 }

@@ -67,16 +67,21 @@ pub struct ValueExpectation {
 impl Expectations {
     /// Reads an expectations file; errors name the file and the key.
     pub fn load(path: &Path) -> Result<Self, String> {
-        let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let text =
+            crate::files::read_text_capped(path, MAX_EXPECT_BYTES, "an expectations file is a few lines of TOML")?;
         let expect: Self = toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         expect.validate().map_err(|e| format!("{}: {e}", path.display()))?;
         Ok(expect)
     }
 
     /// Refuses what no recording could be judged by: a bound or time that is not a finite
-    /// number (`min = nan` would pass everything), and an empty range.
+    /// number (`min = nan` would pass everything), an empty range, and an `[[at]]` without a
+    /// bound (it would pass whatever the value).
     fn validate(&self) -> Result<(), String> {
         for (i, at) in self.at.iter().enumerate() {
+            if at.min.is_none() && at.max.is_none() {
+                return Err(format!("at[{i}] gives neither min nor max: give at least one bound"));
+            }
             for (key, value) in [("time", Some(at.time)), ("min", at.min), ("max", at.max)] {
                 if let Some(v) = value
                     && !v.is_finite()
@@ -101,6 +106,40 @@ impl Expectations {
         }
         Ok(())
     }
+}
+
+/// The largest expectations file read (bytes).
+pub const MAX_EXPECT_BYTES: u64 = 4 << 20;
+
+/// Whether every `[[at]]` of `expect` names a series `recording` lists: an entity the
+/// recording does not have, or a segment or node it does not record, is a mistake in the
+/// expectations (invalid input), not a failure of the recording. `None` where the recording
+/// has no readable run description (`check` reports that).
+pub fn unknown_series(recording: &Recording, expect: &Expectations) -> Option<String> {
+    let info: RunInfo = toml::from_str(recording.static_texts.get(schema::RUN_INFO)?).ok()?;
+    for (i, at) in expect.at.iter().enumerate() {
+        let name = match series_name(at, &info) {
+            Ok(name) => name,
+            Err(e) => return Some(format!("at[{i}]: {e}")),
+        };
+        if !info.series.contains(&name) && info.series.iter().any(|s| s.starts_with(&format!("{name}["))) {
+            return Some(format!(
+                "at[{i}].entity = \"{}\" has one series per recorded segment or node: give segment = k or node = j",
+                at.entity
+            ));
+        }
+        if !info.series.contains(&name) {
+            let mut entities: Vec<&str> =
+                info.series.iter().map(|s| s.split_once('[').map_or(s.as_str(), |(entity, _)| entity)).collect();
+            entities.dedup();
+            return Some(format!(
+                "at[{i}].entity = \"{}\" is not a series of this recording; its entities are: {}",
+                at.entity,
+                entities.join(", ")
+            ));
+        }
+    }
+    None
 }
 
 /// The outcome of a check.

@@ -1,6 +1,7 @@
 //! Reading recordings back and checking them (`slipfront check`).
 
 pub mod arrow_message;
+pub mod catalog;
 pub mod check;
 pub mod export;
 pub mod framing;

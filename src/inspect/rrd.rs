@@ -1,6 +1,5 @@
 //! Reads a Rerun recording (`.rrd`) back into a [`Recording`].
 
-use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::Path;
 
@@ -17,8 +16,8 @@ use crate::record::schema;
 /// yields what came before, with [`Recording::problem`] saying where it stopped.
 pub fn read(path: &Path) -> Result<Recording, ReadError> {
     let open_error = |e: std::io::Error| ReadError(format!("cannot open {}: {e}", path.display()));
-    let mut file = File::open(path).map_err(open_error)?;
-    let total = file.metadata().map_err(open_error)?.len();
+    let (mut file, total) = crate::files::open_regular(path, "a recording is a .rrd file that slipfront wrote")
+        .map_err(|e| ReadError(e.to_string()))?;
     if total == 0 {
         return Err(ReadError(format!("{} is empty: no recording to read", path.display())));
     }
@@ -32,8 +31,8 @@ pub fn read(path: &Path) -> Result<Recording, ReadError> {
 /// the first columns), read from the file's first messages; `None` if it has no blueprint.
 pub fn blueprint_store(path: &Path) -> Result<Option<rerun::external::re_log_types::StoreId>, ReadError> {
     let open_error = |e: std::io::Error| ReadError(format!("cannot open {}: {e}", path.display()));
-    let mut file = File::open(path).map_err(open_error)?;
-    let total = file.metadata().map_err(open_error)?.len();
+    let (mut file, total) = crate::files::open_regular(path, "a recording is a .rrd file that slipfront wrote")
+        .map_err(|e| ReadError(e.to_string()))?;
     let plausible = framing::rrd(&mut file, total);
     file.seek(SeekFrom::Start(0)).map_err(open_error)?;
     let reader = BufReader::new(std::io::Read::take(file, plausible.len));

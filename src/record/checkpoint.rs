@@ -22,8 +22,11 @@ use crate::run::RunMemory;
 
 /// The first bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"SLPFCKPT";
-/// The version of the envelope above.
-pub const FORMAT: u32 = 1;
+/// The version of the envelope above and of the body's layout.
+pub const FORMAT: u32 = 2;
+/// The largest checkpoint read (bytes): a checkpoint holds one run's state, 10 MB for a
+/// 1000 × 100 mesh.
+pub const MAX_CHECKPOINT_BYTES: u64 = 4 << 30;
 /// Seed of the body's checksum.
 pub const SEED: u32 = 0x51f0_c4e7;
 const HEADER: usize = 8 + 4 + 8 + 4;
@@ -60,10 +63,18 @@ pub struct SavedCase {
     pub overrides: Vec<String>,
 }
 
-/// Where the run wrote its outputs (absolute paths).
+impl SavedCase {
+    /// The folder of the case file, which the files it names (a mesh) are relative to.
+    pub fn case_dir(&self) -> PathBuf {
+        self.path.parent().filter(|d| !d.as_os_str().is_empty()).map_or_else(|| PathBuf::from("."), PathBuf::from)
+    }
+}
+
+/// Where the run wrote its outputs, relative to the checkpoint's own folder (a file name for
+/// an output beside it), so that a folder copied or moved elsewhere resumes in place and never
+/// touches the one it came from.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SavedOutputs {
-    pub out_dir: PathBuf,
     pub events: PathBuf,
     pub ruptures: PathBuf,
     pub rrd: Option<PathBuf>,
@@ -71,17 +82,46 @@ pub struct SavedOutputs {
 }
 
 impl SavedOutputs {
-    /// The outputs at these paths, made absolute, so that a resume from another folder finds
-    /// them.
-    pub fn new(out_dir: &Path, events: &Path, ruptures: &Path, rrd: Option<&Path>, mcap: Option<&Path>) -> Self {
-        let absolute = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+    /// The outputs at these paths, named relative to `folder`, where the checkpoint is written.
+    pub fn new(folder: &Path, events: &Path, ruptures: &Path, rrd: Option<&Path>, mcap: Option<&Path>) -> Self {
+        let relative = |p: &Path| relative_to(p, folder);
         Self {
-            out_dir: absolute(out_dir),
-            events: absolute(events),
-            ruptures: absolute(ruptures),
-            rrd: rrd.map(absolute),
-            mcap: mcap.map(absolute),
+            events: relative(events),
+            ruptures: relative(ruptures),
+            rrd: rrd.map(relative),
+            mcap: mcap.map(relative),
         }
+    }
+
+    /// The outputs of a checkpoint in `folder`.
+    pub fn in_folder(&self, folder: &Path) -> Self {
+        let join = |p: &PathBuf| folder.join(p);
+        Self {
+            events: join(&self.events),
+            ruptures: join(&self.ruptures),
+            rrd: self.rrd.as_ref().map(join),
+            mcap: self.mcap.as_ref().map(join),
+        }
+    }
+}
+
+/// `path` relative to `folder`, both made absolute first, through `..` where `path` lies
+/// outside it: `out/x.rrd` from `out` is `x.rrd`, `other/x.rrd` is `../other/x.rrd`.
+pub fn relative_to(path: &Path, folder: &Path) -> PathBuf {
+    let absolute = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+    let (path, folder) = (absolute(path), absolute(folder));
+    let (to, from): (Vec<_>, Vec<_>) = (path.components().collect(), folder.components().collect());
+    let common = to.iter().zip(&from).take_while(|(a, b)| a == b).count();
+    let mut relative: PathBuf = from[common..].iter().map(|_| std::path::Component::ParentDir).collect();
+    relative.extend(&to[common..]);
+    relative
+}
+
+/// The folder a checkpoint at `path` is in (`.` for a bare file name).
+pub fn folder_of(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(folder) if !folder.as_os_str().is_empty() => folder.to_path_buf(),
+        _ => PathBuf::from("."),
     }
 }
 
@@ -141,7 +181,11 @@ pub fn decode(bytes: &[u8], name: &str) -> Result<Checkpoint, String> {
 
 /// Reads the checkpoint at `path`.
 pub fn read(path: &Path) -> Result<Checkpoint, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let bytes = crate::files::read_capped(
+        path,
+        MAX_CHECKPOINT_BYTES,
+        "a checkpoint is the <stem>.ckpt file of a run started with --checkpoint-every",
+    )?;
     decode(&bytes, &path.display().to_string())
 }
 
@@ -162,9 +206,15 @@ pub fn write(path: &Path, keep: Option<&Path>, info: &CheckpointInfo, run: &RunM
     }
     if let Some(keep) = keep {
         let _ = std::fs::remove_file(keep);
-        std::fs::hard_link(&writing, keep).map_err(error)?;
+        if let Err(e) = std::fs::hard_link(&writing, keep) {
+            let _ = std::fs::remove_file(&writing);
+            return Err(format!("cannot keep the checkpoint as {}: {e}", keep.display()));
+        }
     }
-    std::fs::rename(&writing, path).map_err(error)?;
+    if let Err(e) = std::fs::rename(&writing, path) {
+        let _ = std::fs::remove_file(&writing);
+        return Err(error(e));
+    }
     if let Some(folder) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
         // The rename itself reaches the disk with the folder.
         let _ = std::fs::File::open(folder).and_then(|f| f.sync_all());

@@ -44,6 +44,33 @@ impl SeriesDigest {
     }
 }
 
+/// The running digest of one topic of an MCAP log: `xxh32` over each message's sequence
+/// number, log time (ns) and length, each little-endian, and its bytes, in the order written.
+/// A checkpoint keeps it, so that `slipfront resume` knows the log it continues as this run's.
+#[derive(Clone)]
+pub struct MessageDigest(Xxh32);
+
+impl Default for MessageDigest {
+    fn default() -> Self {
+        Self(Xxh32::new(SEED))
+    }
+}
+
+impl MessageDigest {
+    /// Adds one message.
+    pub fn add(&mut self, sequence: u32, log_time: u64, data: &[u8]) {
+        self.0.update(&sequence.to_le_bytes());
+        self.0.update(&log_time.to_le_bytes());
+        self.0.update(&(data.len() as u64).to_le_bytes());
+        self.0.update(data);
+    }
+
+    /// The digest of the messages added so far, as 8 hexadecimal digits.
+    pub fn hex(&self) -> String {
+        format!("{:08x}", self.0.digest())
+    }
+}
+
 /// Seconds as the recording stores them: whole nanoseconds, rounded as Rerun's
 /// `TimeColumn::new_duration_secs` rounds them.
 pub fn nanos(seconds: f64) -> i64 {

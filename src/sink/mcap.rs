@@ -15,6 +15,7 @@ use crate::catalog::events::Catalog;
 use crate::frame::Ending;
 use crate::frame::Quantity;
 use crate::frame::{Frame, Layout, Needs};
+use crate::record::digest::MessageDigest;
 use crate::record::mcap::{self as mcap_log, LogHeader, nanos};
 use crate::record::proto;
 use crate::record::schema::{Decimator, RecordingPlan, RunEnding, selection};
@@ -39,6 +40,8 @@ pub struct McapSink {
     needs: Needs,
     /// The log this one continues, for a resumed run.
     continuation: Option<Continuation>,
+    /// The digest of each per-row topic's messages so far.
+    digests: BTreeMap<&'static str, MessageDigest>,
 }
 
 impl McapSink {
@@ -65,6 +68,7 @@ impl McapSink {
             last_time: 0.0,
             needs,
             continuation: None,
+            digests: BTreeMap::new(),
         })
     }
 
@@ -88,7 +92,7 @@ impl McapSink {
     }
 
     /// Copies the continued log's rows up to the checkpoint into this one, checks that they
-    /// are all there, and renames the file to its target.
+    /// are all there, and continues the topics' digests over them.
     fn continue_log(&mut self, memory: &LogMemory) -> Result<(), SinkError> {
         let Some(continuation) = self.continuation.clone() else { return Ok(()) };
         let topics = self.row_topics();
@@ -98,7 +102,7 @@ impl McapSink {
         let copied =
             crate::record::continuation::copy_log(&continuation.previous, writer, &self.channels, &topics, memory.rows)
                 .map_err(SinkError)?;
-        if let Some((topic, count)) = copied.iter().find(|(_, c)| **c != memory.rows) {
+        if let Some((topic, (count, _))) = copied.iter().find(|(_, (c, _))| *c != memory.rows) {
             return Err(SinkError(format!(
                 "{} holds {count} messages on {topic} before the checkpoint, where the checkpoint counts {} rows: \
                  it is not this run's log up to its checkpoint",
@@ -109,8 +113,7 @@ impl McapSink {
         if let Err(e) = writer.flush() {
             return Err(self.abandon("cannot write", e));
         }
-        continuation.commit()?;
-        self.path = continuation.target.clone();
+        self.digests = copied.into_iter().map(|(topic, (_, digest))| (topic, digest)).collect();
         Ok(())
     }
 
@@ -122,7 +125,11 @@ impl McapSink {
         let Some(writer) = self.writer.as_mut() else {
             return Err(SinkError(format!("{} was abandoned after an earlier write error", self.path.display())));
         };
-        writer.write_to_known_channel(&header, data).map_err(|e| self.abandon("cannot write", e))
+        writer.write_to_known_channel(&header, data).map_err(|e| self.abandon("cannot write", e))?;
+        if let Some(digest) = self.digests.get_mut(topic) {
+            digest.add(header.sequence, header.log_time, data);
+        }
+        Ok(())
     }
 
     /// Gives up the log after a write error (a full disk, say) and says why. The `mcap` writer
@@ -225,6 +232,7 @@ impl Sink for McapSink {
             let channel = channel.map_err(|e| self.abandon("cannot write", e))?;
             self.channels.insert(topic, channel);
         }
+        self.digests = self.row_topics().into_iter().map(|topic| (topic, MessageDigest::default())).collect();
         self.write(mcap_log::TOPIC_RUN, 0.0, &proto::Run { header: text }.encode_to_vec())
     }
 
@@ -242,6 +250,7 @@ impl Sink for McapSink {
         sync(&self.path)?;
         Ok(SinkMemory::Log(LogMemory {
             rows: self.rows,
+            digests: self.digests.iter().map(|(topic, digest)| (topic.to_string(), digest.hex())).collect(),
             sequence: self.sequence,
             last_time: self.last_time,
             decimator: self.decimator.memory(),

@@ -64,24 +64,15 @@ pub trait Sink {
     fn finish(&mut self, ending: Ending, last: Option<&Frame>, catalog: &Catalog) -> Result<(), SinkError>;
 }
 
-/// Where a resumed run's file sink finds the file it continues, and where it writes: the
-/// continued file is written beside its `target` as `writing`, starting with the part of
-/// `previous` up to the checkpoint, and renamed to `target` once that part is on the disk, so
-/// that `target` always holds a whole run up to some step.
+/// Where a resumed run's file sink finds the file it continues (`previous`), and where it
+/// writes the continued one (`writing`, beside the file it will replace): the part of
+/// `previous` up to the checkpoint first, then the continued run. `slipfront resume` renames it
+/// over the file it replaces only once the run has finished it, so a resume that is refused,
+/// fails or is killed leaves the earlier run's files as they were.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Continuation {
     pub previous: PathBuf,
     pub writing: PathBuf,
-    pub target: PathBuf,
-}
-
-impl Continuation {
-    /// Renames `writing` to `target`.
-    pub fn commit(&self) -> Result<(), SinkError> {
-        std::fs::rename(&self.writing, &self.target).map_err(|e| {
-            SinkError(format!("cannot rename {} to {}: {e}", self.writing.display(), self.target.display()))
-        })
-    }
 }
 
 /// Forces what was written to `path` (through any handle) onto the disk.

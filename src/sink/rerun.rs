@@ -113,8 +113,7 @@ impl RerunSink {
     }
 
     /// Copies the continued recording's rows up to the checkpoint into this one, checks that
-    /// they are all there, continues the series' digests over them, and renames the file to
-    /// its target.
+    /// they are all there, and continues the series' digests over them.
     fn continue_recording(&mut self, memory: &RecordingMemory) -> Result<(), SinkError> {
         let Some(continuation) = self.continuation.clone() else { return Ok(()) };
         let id = self.plan.recording_id.clone().unwrap_or_default();
@@ -135,10 +134,7 @@ impl RerunSink {
         }
         let recorded = crate::inspect::rrd::read(&continuation.previous).map_err(|e| SinkError(e.0))?;
         self.series.resume_digests(&recorded.series, through).map_err(SinkError)?;
-        flush(self.rec())?;
-        continuation.commit()?;
-        self.file = Some(continuation.target.clone());
-        Ok(())
+        flush(self.rec())
     }
 
     fn rec(&self) -> &RecordingStream {
@@ -320,6 +316,7 @@ impl Sink for RerunSink {
             through: self.seen,
             rows: self.rows,
             last_time: self.last_time,
+            digests: self.series.digests(),
             decimator: self.decimator.memory(),
             views: self.views.memory(),
             slip_front: self.slip_front.as_ref().and_then(SlipFront::memory),

@@ -4,6 +4,7 @@
 
 pub mod ensemble;
 pub mod figures;
+pub mod record;
 pub mod replay;
 pub mod runner;
 pub mod spec;

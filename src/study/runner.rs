@@ -1,20 +1,21 @@
 //! Running a study's members: on the cores, a shard of them, skipping those already done.
 //!
 //! Each member writes into the study's folder what `slipfront run` writes for a case
-//! (`member-0007.rrd`, `.events.csv`, `.ruptures.csv`), then, last, `member-0007.done.toml`:
-//! its parameters, how its run ended and what its catalog says of the paper's observations.
-//! That record is written beside and renamed into place, so a member is complete exactly when
-//! it exists: `--resume` skips those members, and a killed study loses only the members in
-//! flight.
+//! (`member-0007.rrd`, `.events.csv`, `.ruptures.csv`), holding a lock on each while it runs
+//! ([`crate::cli::outputs`] refuses a second writer), then, last, `member-0007.done.toml`: its
+//! parameters, how its run ended and the digests by which it is verified
+//! ([`crate::study::record`]). That record is written beside and renamed into place, and the
+//! member's old record is removed before it runs again, so a member is complete exactly when its
+//! record exists and verifies: `--resume` skips those members and runs every other one, and a
+//! killed study loses only the members in flight. A member whose run fails is recorded as
+//! failed, with its error.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
-use serde::{Deserialize, Serialize};
-
-use crate::catalog::observations::Observations;
+use crate::cli::outputs::{self, Named};
 use crate::frame::Needs;
 use crate::record::schema::RecordingPlan;
 use crate::run::{LoopOptions, Outcome, run};
@@ -22,68 +23,109 @@ use crate::scene;
 use crate::sink::Sink;
 use crate::sink::catalog::CatalogSink;
 use crate::sink::rerun::{RerunSink, Viewer, open_stream};
+use crate::study::record::{DONE, MemberRecord, Standing, file_digest, identity, output, run_name, standing};
 use crate::study::spec::{Member, Study};
 use crate::study::stop::StopRules;
-
-/// What a finished member leaves as `<name>.done.toml`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct MemberRecord {
-    pub index: usize,
-    pub row: usize,
-    pub k: usize,
-    /// The varying keys and their values (TOML text), in the study's order.
-    pub parameters: Vec<(String, String)>,
-    /// `completed`, `failed`, or `stopped` and why, by a stop rule (an interrupted member has
-    /// no record).
-    pub ending: String,
-    /// Why the run failed, if it did.
-    pub error: Option<String>,
-    pub segments: usize,
-    pub slip_events: usize,
-    pub ruptures: usize,
-    /// Slip events per segment, from the left.
-    pub slips_per_segment: Vec<usize>,
-    /// The paper's observations 1–3 ([`crate::catalog::observations::Verdict`]); block scenes.
-    pub verdict: Option<[bool; 3]>,
-}
-
-/// The paths of a member's outputs in `dir`.
-pub fn output(dir: &Path, member: &str, suffix: &str) -> PathBuf {
-    dir.join(format!("{member}{suffix}"))
-}
-
-/// Reads a member's record, if it finished.
-pub fn record_of(dir: &Path, member: &str) -> Option<MemberRecord> {
-    let text = std::fs::read_to_string(output(dir, member, ".done.toml")).ok()?;
-    toml::from_str(&text).ok()
-}
 
 /// How a study is run.
 pub struct Options<'a> {
     pub jobs: usize,
-    /// Skip members whose record exists.
-    pub resume: bool,
     /// Print a line per finished member on stderr.
     pub progress: bool,
     /// Set to stop: members in flight finish their current step and leave no record.
     pub interrupt: Option<&'a AtomicBool>,
 }
 
-/// Runs `selected` members of `study` into `dir`; returns how many ran and how many were
-/// skipped as done.
-pub fn run_members(
-    study: &Study,
-    selected: &[&Member],
-    dir: &Path,
-    options: &Options,
-) -> Result<(usize, usize), String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    let todo: Vec<&Member> =
-        selected.iter().copied().filter(|m| !(options.resume && record_of(dir, &m.name).is_some())).collect();
-    let skipped = selected.len() - todo.len();
+/// Why the members that run now run: with `--resume`, each selected member that is not done.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Plan {
+    /// Members verified as done, skipped.
+    pub kept: usize,
+    /// Members to run: without a record, failed before, of other parameters (the study file
+    /// changed), and whose record or outputs do not verify (with the first reason).
+    pub not_run: usize,
+    pub failed: usize,
+    pub stale: usize,
+    pub unverified: Vec<String>,
+}
+
+impl Plan {
+    /// `--resume: 3 members verified and kept; to run: 2 without a record, ...`, for people.
+    pub fn describe(&self) -> String {
+        let mut reasons = Vec::new();
+        for (n, why) in [
+            (self.not_run, "without a record"),
+            (self.failed, "failed before"),
+            (self.stale, "of other parameters than the study file's"),
+            (self.unverified.len(), "whose record or outputs do not verify"),
+        ] {
+            if n > 0 {
+                reasons.push(format!("{n} {why}"));
+            }
+        }
+        let mut text = format!("--resume: {} verified and kept", members(self.kept));
+        if !reasons.is_empty() {
+            text.push_str(&format!("; to run: {}", reasons.join(", ")));
+        }
+        if let Some(first) = self.unverified.first() {
+            text.push_str(&format!(" (first: {first})"));
+        }
+        text
+    }
+}
+
+/// `1 member`, `2 members`.
+pub fn members(n: usize) -> String {
+    if n == 1 { "1 member".into() } else { format!("{n} members") }
+}
+
+/// What running the members did.
+#[derive(Debug, Default)]
+pub struct Ran {
+    /// Members run to a record, and of them failed.
+    pub ran: usize,
+    pub failed: usize,
+    /// Members not run because their outputs could not be claimed (another command holds
+    /// them), and why.
+    pub busy: Vec<String>,
+    /// Members whose record could not be written, and why.
+    pub unwritable: Vec<String>,
+}
+
+/// Why a member left no record: another command holds its outputs (nothing was written), or
+/// its record or an output's digest could not be written or read.
+enum Unrecorded {
+    Busy(String),
+    Unwritable(String),
+}
+
+/// The members of `selected` to run in `dir`: all of them, or with `resume` those not done.
+pub fn plan<'m>(study: &Study, selected: &[&'m Member], dir: &Path, resume: bool) -> (Vec<&'m Member>, Plan) {
+    if !resume {
+        return (selected.to_vec(), Plan::default());
+    }
+    let mut plan = Plan::default();
+    let mut todo = Vec::new();
+    for &member in selected {
+        match standing(dir, study, member) {
+            Standing::Finished(_) => {
+                plan.kept += 1;
+                continue;
+            }
+            Standing::Failed(_) => plan.failed += 1,
+            Standing::NotRun => plan.not_run += 1,
+            Standing::Stale => plan.stale += 1,
+            Standing::Unverified(why) => plan.unverified.push(format!("{}: {why}", member.name)),
+        }
+        todo.push(member);
+    }
+    (todo, plan)
+}
+
+/// Runs `todo` members of `study` into `dir`.
+pub fn run_members(study: &Study, todo: &[&Member], dir: &Path, options: &Options) -> Ran {
     let next = AtomicUsize::new(0);
-    let finished = AtomicUsize::new(0);
-    let errors = Mutex::new(Vec::new());
+    let ran = Mutex::new(Ran::default());
     let started = Instant::now();
     std::thread::scope(|scope| {
         for _ in 0..options.jobs.clamp(1, todo.len().max(1)) {
@@ -95,35 +137,37 @@ pub fn run_members(
                         break;
                     }
                     let member = todo[i];
-                    match run_member(study, member, dir, options.interrupt) {
-                        Ok(Some(record)) => {
-                            let done = finished.fetch_add(1, Ordering::SeqCst) + 1;
+                    let result = run_member(study, member, dir, options.interrupt);
+                    let mut ran = ran.lock().unwrap_or_else(|e| e.into_inner());
+                    match result {
+                        Ok(Some((record, events, ruptures))) => {
+                            ran.ran += 1;
+                            ran.failed += usize::from(record.failed());
                             if options.progress {
+                                let how = match &record.error {
+                                    Some(error) => format!("failed: {error}"),
+                                    None => format!("{}: {events} slip events, {ruptures} ruptures", record.ending),
+                                };
                                 eprintln!(
-                                    "slipfront study {}: [{done}/{}] {} {} ({}): {} slip events, {} ruptures; {:.0} s elapsed",
+                                    "slipfront study {}: [{}/{}] {} ({}) {how}; {:.0} s elapsed",
                                     study.name,
+                                    ran.ran,
                                     todo.len(),
                                     member.name,
-                                    record.ending,
                                     describe(&record.parameters),
-                                    record.slip_events,
-                                    record.ruptures,
                                     started.elapsed().as_secs_f64()
                                 );
                             }
                         }
                         Ok(None) => {}
-                        Err(e) => errors.lock().unwrap_or_else(|e| e.into_inner()).push(format!("{}: {e}", member.name)),
+                        Err(Unrecorded::Busy(e)) => ran.busy.push(format!("{}: {e}", member.name)),
+                        Err(Unrecorded::Unwritable(e)) => ran.unwritable.push(format!("{}: {e}", member.name)),
                     }
                 }
             });
         }
     });
-    let errors = errors.into_inner().unwrap_or_else(|e| e.into_inner());
-    if let Some(first) = errors.first() {
-        return Err(first.clone());
-    }
-    Ok((finished.into_inner(), skipped))
+    ran.into_inner().unwrap_or_else(|e| e.into_inner())
 }
 
 /// `key = value, ...` for people.
@@ -134,28 +178,60 @@ pub fn describe(parameters: &[(String, String)]) -> String {
     parameters.iter().map(|(k, v)| format!("{k} = {v}")).collect::<Vec<_>>().join(", ")
 }
 
-/// Runs one member into `dir` and writes its record; `None` if it was interrupted (it then
-/// leaves no record, and `--resume` runs it again).
+/// Runs one member into `dir` and writes its record (a failed run too, with its error);
+/// returns the record and the catalog's counts, `None` if it was interrupted (it then leaves no
+/// record, and `--resume` runs it again), or why its outputs could not be claimed (another
+/// command is writing them; nothing was written).
 fn run_member(
     study: &Study,
     member: &Member,
     dir: &Path,
     interrupt: Option<&AtomicBool>,
-) -> Result<Option<MemberRecord>, String> {
+) -> Result<Option<(MemberRecord, usize, usize)>, Unrecorded> {
     let case = &member.case;
-    let mut scene = scene::build(case).map_err(|e| e.to_string())?;
+    let record = |ending: &str, error: Option<String>, segments: usize| MemberRecord {
+        index: member.index,
+        row: member.row,
+        k: member.k,
+        parameters: member.parameters.iter().map(|(k, v)| (k.clone(), v.to_string())).collect(),
+        identity: identity(study, member),
+        ending: ending.to_string(),
+        error,
+        segments,
+        onset_structure: Vec::new(),
+        outputs: Vec::new(),
+        digest: String::new(),
+    };
+    let done = output(dir, &member.name, DONE);
+    let mut scene = match scene::build(case) {
+        Ok(scene) => scene,
+        Err(e) => {
+            let failed = record("failed", Some(e.to_string()), 0);
+            return seal(&done, failed, dir).map(|r| Some((r, 0, 0))).map_err(Unrecorded::Unwritable);
+        }
+    };
     let layout = scene.layout().clone();
     let rrd = output(dir, &member.name, ".rrd");
-    let name = format!("{}-{}", study.name, member.name);
+    let events = output(dir, &member.name, ".events.csv");
     let ruptures = (layout.kind.has_body()).then(|| output(dir, &member.name, ".ruptures.csv"));
-    let (stop, fired) = (AtomicBool::new(false), OnceLock::new());
-    let mut sinks: Vec<Box<dyn Sink + '_>> =
-        vec![Box::new(CatalogSink::new(output(dir, &member.name, ".events.csv"), ruptures))];
+    let mut named = vec![Named { role: "the event catalog", path: &events }];
+    named.extend(ruptures.as_deref().map(|path| Named { role: "the rupture catalog", path }));
     if study.recordings {
+        named.push(Named { role: "the recording", path: &rrd });
+    }
+    let _locks = outputs::claim(&[], &named).map_err(Unrecorded::Busy)?;
+    let _ = std::fs::remove_file(&done);
+    let (stop, fired) = (AtomicBool::new(false), OnceLock::new());
+    let mut sinks: Vec<Box<dyn Sink + '_>> = vec![Box::new(CatalogSink::new(events.clone(), ruptures.clone()))];
+    let mut failure = None;
+    if study.recordings {
+        let name = run_name(study, member);
         let plan = RecordingPlan::for_case(&name, case);
-        let stream = open_stream(Some(&rrd), &Viewer::None, &name, plan.recording_id.as_deref())?
-            .ok_or("no recording stream")?;
-        sinks.push(Box::new(RerunSink::new(stream, plan)));
+        match open_stream(Some(&rrd), &Viewer::None, &name, plan.recording_id.as_deref()) {
+            Ok(Some(stream)) => sinks.push(Box::new(RerunSink::new(stream, plan))),
+            Ok(None) => failure = Some("no recording stream".to_string()),
+            Err(e) => failure = Some(e),
+        }
     }
     let rules = !study.stop.is_empty();
     if rules {
@@ -167,52 +243,54 @@ fn run_member(
         needs: Needs { segment_state: true, ..Needs::default() },
         ..LoopOptions::for_case(case)
     };
-    let outcome = run(scene.as_mut(), &case.time, &mut sinks, options);
+    let outcome = match &failure {
+        Some(_) => None,
+        None => Some(run(scene.as_mut(), &case.time, &mut sinks, options)),
+    };
     drop(sinks);
-    if study.recordings {
+    if study.recordings && rrd.is_file() {
         // A compaction that fails leaves the recording as written, which is complete.
         let _ = crate::record::compact::compact(&rrd);
     }
-    let (ending, error, catalog) = match outcome {
-        Outcome::Completed { catalog, .. } => ("completed".to_string(), None, catalog),
-        Outcome::Failed { error, catalog } => ("failed".to_string(), Some(error.to_string()), catalog),
-        Outcome::Interrupted { catalog, .. } if fired.get().is_some() => {
-            (format!("stopped {}", fired.get().expect("checked")), None, catalog)
-        }
-        Outcome::Interrupted { .. } => return Ok(None),
-        Outcome::Sink(e) => return Err(e.to_string()),
-    };
     let segments = layout.segments.len();
-    let verdict = (layout.kind.has_body() && segments >= 3).then(|| {
-        let v = Observations::measure(&catalog.events, &catalog.ruptures, segments).verdict();
-        [v.left_end, v.right_end, v.propagation]
-    });
-    let mut slips_per_segment = vec![0; segments];
-    for e in &catalog.events {
-        slips_per_segment[e.segment] += 1;
-    }
-    let record = MemberRecord {
-        index: member.index,
-        row: member.row,
-        k: member.k,
-        parameters: member.parameters.iter().map(|(k, v)| (k.clone(), v.to_string())).collect(),
-        ending,
-        error,
-        segments,
-        slip_events: catalog.events.len(),
-        ruptures: catalog.ruptures.len(),
-        slips_per_segment,
-        verdict,
+    let (mut written, catalog) = match outcome {
+        None => (record("failed", failure, segments), None),
+        Some(Outcome::Completed { catalog, .. }) => (record("completed", None, segments), Some(catalog)),
+        Some(Outcome::Failed { error, catalog }) => {
+            (record("failed", Some(error.to_string()), segments), Some(catalog))
+        }
+        Some(Outcome::Interrupted { catalog, .. }) if fired.get().is_some() => {
+            (record(&format!("stopped {}", fired.get().expect("checked")), None, segments), Some(catalog))
+        }
+        Some(Outcome::Interrupted { .. }) => return Ok(None),
+        Some(Outcome::Sink(e)) => (record("failed", Some(e.to_string()), segments), None),
     };
-    write_atomically(&output(dir, &member.name, ".done.toml"), &toml::to_string(&record).map_err(|e| e.to_string())?)?;
-    Ok(Some(record))
+    let counts = catalog.as_ref().map_or((0, 0), |c| (c.events.len(), c.ruptures.len()));
+    if let Some(catalog) = &catalog {
+        written.onset_structure = catalog.events.iter().map(|e| e.structure_before.unwrap_or(f64::NAN)).collect();
+    }
+    for path in named.iter().map(|n| n.path).filter(|p| p.is_file()) {
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        written.outputs.push((name, file_digest(path).map_err(Unrecorded::Unwritable)?));
+    }
+    seal(&done, written, dir).map(|r| Some((r, counts.0, counts.1))).map_err(Unrecorded::Unwritable)
 }
 
-/// Writes `text` beside `path` and renames it into place.
+/// Seals `record` ([`MemberRecord::sealed`]) and writes it to `path`.
+fn seal(path: &Path, record: MemberRecord, dir: &Path) -> Result<MemberRecord, String> {
+    let record = record.sealed()?;
+    let text = toml::to_string(&record).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    write_atomically(path, &text)?;
+    Ok(record)
+}
+
+/// Writes `text` beside `path` (under a name of this process's own) and renames it into place.
 pub fn write_atomically(path: &Path, text: &str) -> Result<(), String> {
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let temporary = path.with_file_name(format!(".{name}.writing"));
-    std::fs::write(&temporary, text)
-        .and_then(|()| std::fs::rename(&temporary, path))
-        .map_err(|e| format!("cannot write {}: {e}", path.display()))
+    let temporary = path.with_file_name(format!(".{name}.{}.writing", std::process::id()));
+    std::fs::write(&temporary, text).and_then(|()| std::fs::rename(&temporary, path)).map_err(|e| {
+        let _ = std::fs::remove_file(&temporary);
+        format!("cannot write {}: {e}", path.display())
+    })
 }

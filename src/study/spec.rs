@@ -101,20 +101,18 @@ pub struct Study {
 /// Reads `path` and builds every member, or says what is wrong: the key, the value and what is
 /// allowed, naming the member whose case is invalid.
 pub fn load(path: &Path) -> Result<Study, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read study file {}: {e}", path.display()))?;
+    let text = crate::files::read_text_capped(path, MAX_STUDY_BYTES, "a study file is a few kilobytes of TOML")?;
     let file: StudyFile = toml::from_str(&text).map_err(|e| format!("{}: {}", path.display(), e.message()))?;
     let name = path.file_stem().map_or_else(|| "study".into(), |s| s.to_string_lossy().into_owned());
     let case_path = path.parent().unwrap_or(Path::new(".")).join(&file.case);
-    let base = std::fs::read_to_string(&case_path).map_err(|e| {
-        format!("{}: case = \"{}\": cannot read {}: {e}", path.display(), file.case, case_path.display())
-    })?;
+    let base = case::read(&case_path).map_err(|e| format!("{}: case = \"{}\": {e}", path.display(), file.case))?;
     check_shape(&file).map_err(|e| format!("{}: {e}", path.display()))?;
     let rows = all_rows(&file);
     let per_row = file.ensemble.as_ref().map_or(1, |e| e.members);
     let mut members = Vec::with_capacity(rows.len() * per_row);
     for (r, row) in rows.iter().enumerate() {
         for k in 0..per_row {
-            let member = build(&file, &base, r, row, k, r * per_row + k)
+            let member = build(&file, (&base, case_path.parent().unwrap_or(Path::new("."))), r, row, k, r * per_row + k)
                 .map_err(|e| format!("{}: member {} (row {r}, k = {k}): {e}", path.display(), r * per_row + k))?;
             members.push(member);
         }
@@ -134,6 +132,10 @@ pub fn load(path: &Path) -> Result<Study, String> {
         members,
     })
 }
+
+/// The largest study file read (bytes): a few kilobytes of TOML, a long list of `[[rows]]`
+/// included.
+pub const MAX_STUDY_BYTES: u64 = 4 << 20;
 
 /// The most members a study may have: each is validated before any runs, and each writes its
 /// own files.
@@ -230,7 +232,7 @@ fn assignment(key: &str, value: &toml::Value) -> String {
 /// Member `index`: sweep row `row` and ensemble member `k`, its case built and validated.
 fn build(
     file: &StudyFile,
-    base: &str,
+    (base, dir): (&str, &Path),
     r: usize,
     row: &[(String, toml::Value)],
     k: usize,
@@ -240,7 +242,7 @@ fn build(
     overrides.extend(row.iter().map(|(key, v)| assignment(key, v)));
     let mut parameters = row.to_vec();
     if let Some(e) = &file.ensemble {
-        let case = case::from_str(base, &overrides).map_err(|err| err.to_string())?;
+        let case = case::from_str_at(base, &overrides, dir).map_err(|err| err.to_string())?;
         let start = value_at(&case.source.table, &e.key).ok_or_else(|| {
             format!("ensemble.key = \"{}\": the case does not give this key a number; set it in [set]", e.key)
         })?;
@@ -248,7 +250,7 @@ fn build(
         overrides.push(assignment(&e.key, &value));
         parameters.push((e.key.clone(), value));
     }
-    let case = case::from_str(base, &overrides).map_err(|err| err.to_string())?;
+    let case = case::from_str_at(base, &overrides, dir).map_err(|err| err.to_string())?;
     Ok(Member { index, row: r, k, name: format!("member-{index:04}"), parameters, overrides, case })
 }
 

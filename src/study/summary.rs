@@ -1,53 +1,127 @@
-//! What a study's finished members say together: `events.csv`, every member's slip events with
-//! its parameters as columns, and `summary.md`, per sweep row the statistics over its members
-//! with their uncertainty. Both are made from the files in the study's folder, so shards that
-//! copy their members into one folder make the same summary as one machine would.
+//! What a study's members say together: `events.csv`, every finished member's slip events with
+//! its parameters as columns, and `summary.md`, per sweep row the statistics over its finished
+//! members with their uncertainty, and the failed members with their errors. Both are made from
+//! the files in the study's folder, so shards that copy their members into one folder make the
+//! same summary as one machine would.
+//!
+//! Only what verifies counts ([`crate::study::record`]): a member whose record or outputs do not
+//! verify, or whose record is of other parameters, is not finished. Counts and verdicts are read
+//! from each member's own catalogs, never from its record. Failed members are counted apart and
+//! left out of every statistic.
 
 use std::fmt::Write as _;
 use std::path::Path;
 
+use crate::case::SceneSpec;
+use crate::catalog::events::SlipEvent;
+use crate::catalog::observations::Observations;
+use crate::inspect::catalog;
 use crate::study::figures::{Proportions, plot_proportions};
-use crate::study::runner::{MemberRecord, output, record_of, write_atomically};
-use crate::study::spec::Study;
+use crate::study::record::{MemberRecord, Standing, output, standing};
+use crate::study::runner::{describe, members, write_atomically};
+use crate::study::spec::{Member, Study};
 
-/// Writes `events.csv` and `summary.md` into `dir` from the members finished there; returns
-/// how many are finished.
-pub fn write(study: &Study, dir: &Path) -> Result<usize, String> {
-    let records: Vec<MemberRecord> = study.members.iter().filter_map(|m| record_of(dir, &m.name)).collect();
-    write_atomically(&dir.join("events.csv"), &events_table(study, dir, &records)?)?;
-    write_atomically(&dir.join("summary.md"), &summary(study, &records))?;
-    verdict_figure(study, &dir.join("summary.png"), &records)?;
-    Ok(records.len())
+/// The largest member catalog read (bytes).
+pub const MAX_CATALOG_BYTES: u64 = 1 << 30;
+
+/// A finished member as its catalogs tell it.
+struct Finished<'s> {
+    member: &'s Member,
+    record: MemberRecord,
+    /// The events CSV's data lines, for `events.csv`.
+    lines: Vec<String>,
+    events: usize,
+    ruptures: usize,
+    slips_per_segment: Vec<usize>,
+    /// The paper's observations 1–3 ([`crate::catalog::observations::Verdict`]); block scenes.
+    verdict: Option<[bool; 3]>,
+}
+
+/// How many of a study's members are finished and failed, as [`write`] found them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Counts {
+    pub finished: usize,
+    pub failed: usize,
+}
+
+/// Writes `events.csv`, `summary.md` and `summary.png` into `dir` from the members that verify
+/// there.
+pub fn write(study: &Study, dir: &Path) -> Result<Counts, String> {
+    let mut finished = Vec::new();
+    let mut failed = Vec::new();
+    for member in &study.members {
+        match standing(dir, study, member) {
+            Standing::Finished(record) => finished.extend(read_catalogs(dir, member, record)),
+            Standing::Failed(record) => failed.push((member, record)),
+            Standing::NotRun | Standing::Stale | Standing::Unverified(_) => {}
+        }
+    }
+    write_atomically(&dir.join("events.csv"), &events_table(study, &finished))?;
+    write_atomically(&dir.join("summary.md"), &summary(study, &finished, &failed))?;
+    verdict_figure(study, &dir.join("summary.png"), &finished)?;
+    Ok(Counts { finished: finished.len(), failed: failed.len() })
+}
+
+/// The member's catalogs, read and measured; `None` if they cannot be (they verified, so only
+/// a file changed since, or one too large, is left out).
+fn read_catalogs<'s>(dir: &Path, member: &'s Member, record: MemberRecord) -> Option<Finished<'s>> {
+    let read = |suffix: &str| {
+        let path = output(dir, &member.name, suffix);
+        let text = crate::files::read_text_capped(&path, MAX_CATALOG_BYTES, "a member's catalog is a CSV file").ok()?;
+        Some((path.display().to_string(), text))
+    };
+    let (name, text) = read(".events.csv")?;
+    let mut events: Vec<SlipEvent> = catalog::events(&text, &name).ok()?;
+    let ruptures = match read(".ruptures.csv") {
+        Some((name, text)) => catalog::ruptures(&text, &name).ok()?,
+        None => Vec::new(),
+    };
+    let segments = record.segments;
+    let mut slips_per_segment = vec![0; segments];
+    for e in &events {
+        *slips_per_segment.get_mut(e.segment)? += 1;
+    }
+    let judged = matches!(member.case.scene, SceneSpec::Block(_)) && segments >= 3;
+    let verdict = if judged && record.onset_structure.len() == events.len() {
+        for (event, structure) in events.iter_mut().zip(&record.onset_structure) {
+            event.structure_before = Some(*structure).filter(|s| !s.is_nan());
+        }
+        let v = Observations::measure(&events, &ruptures, segments).verdict();
+        Some([v.left_end, v.right_end, v.propagation])
+    } else {
+        None
+    };
+    Some(Finished {
+        member,
+        lines: text.lines().skip(1).filter(|l| !l.is_empty()).map(str::to_string).collect(),
+        events: events.len(),
+        ruptures: ruptures.len(),
+        slips_per_segment,
+        verdict,
+        record,
+    })
 }
 
 /// Every finished member's events, its index, row, ensemble index and parameters first.
-fn events_table(study: &Study, dir: &Path, records: &[MemberRecord]) -> Result<String, String> {
+fn events_table(study: &Study, finished: &[Finished<'_>]) -> String {
     let mut out = String::from("member,row,k");
     for key in &study.varying {
         let _ = write!(out, ",{key}");
     }
     out.push_str(",segment,onset_s,end_s,slip_m,peak_slip_rate_m_s,traction_before_pa,traction_after_pa\n");
-    for record in records {
-        let name = &study.members[record.index].name;
-        let path = output(dir, name, ".events.csv");
-        let text = std::fs::read_to_string(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-        let values: Vec<&str> = record.parameters.iter().map(|(_, v)| v.as_str()).collect();
-        for line in text.lines().skip(1).filter(|l| !l.is_empty()) {
-            let _ = writeln!(out, "{},{},{},{}{line}", record.index, record.row, record.k, prefix(&values));
+    for f in finished {
+        let values: String = f.member.parameters.iter().map(|(_, v)| format!("{v},")).collect();
+        for line in &f.lines {
+            let _ = writeln!(out, "{},{},{},{values}{line}", f.member.index, f.member.row, f.member.k);
         }
     }
-    Ok(out)
+    out
 }
 
-/// `v1,v2,` (or nothing).
-fn prefix(values: &[&str]) -> String {
-    values.iter().map(|v| format!("{v},")).collect()
-}
-
-/// `summary.png`: per row, the share of members in which each of the paper's observations
-/// holds, with its 95 % interval; none for studies of scenes without verdicts.
-fn verdict_figure(study: &Study, path: &Path, records: &[MemberRecord]) -> Result<(), String> {
-    if records.iter().all(|r| r.verdict.is_none()) {
+/// `summary.png`: per row, the share of finished members in which each of the paper's
+/// observations holds, with its 95 % interval; none for studies of scenes without verdicts.
+fn verdict_figure(study: &Study, path: &Path, finished: &[Finished<'_>]) -> Result<(), String> {
+    if finished.iter().all(|f| f.verdict.is_none()) {
         return Ok(());
     }
     let labels = ["1. left end", "2. right end", "3. propagation", "all three"];
@@ -59,7 +133,7 @@ fn verdict_figure(study: &Study, path: &Path, records: &[MemberRecord]) -> Resul
             counts: (0..study.rows)
                 .map(|row| {
                     let judged: Vec<[bool; 3]> =
-                        records.iter().filter(|r| r.row == row).filter_map(|r| r.verdict).collect();
+                        finished.iter().filter(|f| f.member.row == row).filter_map(|f| f.verdict).collect();
                     let held = judged.iter().filter(|v| if i == 3 { v.iter().all(|&b| b) } else { v[i] }).count();
                     (held, judged.len())
                 })
@@ -93,30 +167,45 @@ fn mean_and_error(values: &[f64]) -> (f64, f64) {
     (mean, (variance / n).sqrt())
 }
 
-/// `summary.md`: per sweep row, the members finished, their slips per segment and event counts
-/// (mean ± standard error), and the paper's observations as proportions with a 95 % interval.
-fn summary(study: &Study, records: &[MemberRecord]) -> String {
+/// `summary.md`: per sweep row, the members finished and failed, the finished members' slips
+/// per segment and event counts (mean ± standard error), and the paper's observations as
+/// proportions with a 95 % interval; then every failed member with its error.
+fn summary(study: &Study, finished: &[Finished<'_>], failed: &[(&Member, MemberRecord)]) -> String {
+    let total = study.members.len();
     let mut out = format!(
-        "# Study {}\n\n{} of {} members finished ({} of {} members). Base case: `{}`.\n\n",
+        "# Study {}\n\n{} of {total} members finished, {} failed, {} not run or not verified ({} of {}). \
+         Base case: `{}`.\n\n",
         study.name,
-        records.len(),
-        study.members.len(),
+        finished.len(),
+        failed.len(),
+        total - finished.len() - failed.len(),
         plural(study.rows, "row"),
-        study.members_per_row,
+        members(study.members_per_row),
         study.case_path.display()
     );
     out.push_str(
-        "Mean ± standard error over a row's finished members. Verdicts: the paper's observations 1–3 \
-         (`Verdict`: left end, right end, propagation) as members holding / members, with the Wilson 95 % \
-         interval of the proportion.\n\n",
+        "Mean ± standard error over a row's finished members, counted from their catalogs; failed members are \
+         left out. Verdicts: the paper's observations 1–3 (`Verdict`: left end, right end, propagation) as \
+         members holding / members, with the Wilson 95 % interval of the proportion.\n\n",
     );
     for row in 0..study.rows {
-        let members: Vec<&MemberRecord> = records.iter().filter(|r| r.row == row).collect();
         let first = &study.members[row * study.members_per_row];
         let swept: Vec<(String, String)> =
             first.parameters[..study.swept].iter().map(|(k, v)| (k.clone(), v.to_string())).collect();
-        let _ = writeln!(out, "## Row {row}: {}\n", crate::study::runner::describe(&swept));
-        row_statistics(&mut out, &members);
+        let _ = writeln!(out, "## Row {row}: {}\n", describe(&swept));
+        let members: Vec<&Finished<'_>> = finished.iter().filter(|f| f.member.row == row).collect();
+        let failures = failed.iter().filter(|(m, _)| m.row == row).count();
+        row_statistics(&mut out, &members, failures);
+    }
+    if !failed.is_empty() {
+        out.push_str("## Failed members\n\n");
+        for (member, record) in failed {
+            let error = record.error.as_deref().unwrap_or("no error given").replace('\n', " ");
+            let parameters: Vec<(String, String)> =
+                member.parameters.iter().map(|(k, v)| (k.clone(), v.to_string())).collect();
+            let _ = writeln!(out, "- {} ({}): {error}", member.name, describe(&parameters));
+        }
+        out.push('\n');
     }
     out
 }
@@ -126,30 +215,28 @@ fn plural(n: usize, word: &str) -> String {
     if n == 1 { format!("1 {word}") } else { format!("{n} {word}s") }
 }
 
-/// The statistics of one row.
-fn row_statistics(out: &mut String, members: &[&MemberRecord]) {
-    let count = |prefix: &str| members.iter().filter(|m| m.ending.starts_with(prefix)).count();
+/// The statistics of one row's finished members.
+fn row_statistics(out: &mut String, members: &[&Finished<'_>], failed: usize) {
+    let count = |prefix: &str| members.iter().filter(|f| f.record.ending.starts_with(prefix)).count();
     let _ = writeln!(
         out,
-        "- members finished: {} ({} completed, {} stopped by a rule, {} failed)",
+        "- members finished: {} ({} completed, {} stopped by a rule); failed: {failed}",
         members.len(),
         count("completed"),
         count("stopped"),
-        count("failed")
     );
     if members.is_empty() {
         out.push('\n');
         return;
     }
-    let stat = |f: &dyn Fn(&MemberRecord) -> f64| {
+    let stat = |f: &dyn Fn(&Finished<'_>) -> f64| {
         let (mean, error) = mean_and_error(&members.iter().map(|m| f(m)).collect::<Vec<_>>());
         if error.is_nan() { format!("{mean:.2}") } else { format!("{mean:.2} ± {error:.2}") }
     };
-    let _ =
-        writeln!(out, "- slip events: {}; ruptures: {}", stat(&|m| m.slip_events as f64), stat(&|m| m.ruptures as f64));
-    let segments = members.iter().map(|m| m.segments).max().unwrap_or(0);
+    let _ = writeln!(out, "- slip events: {}; ruptures: {}", stat(&|m| m.events as f64), stat(&|m| m.ruptures as f64));
+    let segments = members.iter().map(|m| m.slips_per_segment.len()).max().unwrap_or(0);
     let per_segment: Vec<String> = (0..segments)
-        .map(|s| stat(&|m: &MemberRecord| m.slips_per_segment.get(s).copied().unwrap_or(0) as f64))
+        .map(|s| stat(&|m: &Finished<'_>| m.slips_per_segment.get(s).copied().unwrap_or(0) as f64))
         .collect();
     let _ = writeln!(out, "- slips per segment, from the left: {}", per_segment.join(" | "));
     let judged: Vec<[bool; 3]> = members.iter().filter_map(|m| m.verdict).collect();
