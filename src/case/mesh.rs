@@ -40,8 +40,9 @@ pub struct MeshSpec {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
-    /// A surface group of the mesh.
-    pub group: String,
+    /// A surface group of the mesh; left out, every cell no other material names (a mesh
+    /// whose surface has no physical group, as Gmsh writes with `Mesh.SaveAll`).
+    pub group: Option<String>,
     /// `E` (Pa).
     pub youngs_modulus: f64,
     /// `ν` (-), in [0, 0.5).
@@ -417,30 +418,50 @@ impl MeshSpec {
     /// Each cell's material: every cell in exactly one material group.
     fn cell_materials(&self, mesh: &Mesh, c: &mut Checker<'_>) -> Vec<usize> {
         let mut material = vec![usize::MAX; mesh.cells.len()];
+        let mut default = None;
         for (i, m) in self.materials.iter().enumerate() {
             let key = format!("materials[{i}].group");
-            let Some(Members::Cells(cells)) = group(mesh, &m.group, &key, "surface", c) else { continue };
+            let Some(name) = &m.group else {
+                match default {
+                    Some(first) => c.fail(
+                        &key,
+                        "none",
+                        format!(
+                            "is left out by materials[{first}] already: one material may take the cells no other names"
+                        ),
+                    ),
+                    None => default = Some(i),
+                }
+                continue;
+            };
+            let Some(Members::Cells(cells)) = group(mesh, name, &key, "surface", c) else { continue };
             for &cell in cells {
                 if material[cell] != usize::MAX {
-                    let other = &self.materials[material[cell]].group;
+                    let other = self.materials[material[cell]].group.as_deref().unwrap_or("");
                     let at = centre(mesh, cell);
-                    c.fail(
-                        &key,
-                        format!("{:?}", m.group),
-                        format!("shares the cell at {at} with {other:?}: a cell takes one material"),
-                    );
+                    let rule = format!("shares the cell at {at} with {other:?}: a cell takes one material");
+                    c.fail(&key, format!("{name:?}"), rule);
                     return material;
                 }
                 material[cell] = i;
             }
         }
         let missing: Vec<usize> = (0..mesh.cells.len()).filter(|&k| material[k] == usize::MAX).collect();
-        if let Some(&first) = missing.first() {
-            c.fail(
-                "materials",
-                format!("[{}]", self.materials.iter().map(|m| format!("{:?}", m.group)).collect::<Vec<_>>().join(", ")),
-                format!("leave {} cells without a material (the first at {}): every surface group needs one; the mesh has {}", missing.len(), centre(mesh, first), describe_groups(mesh)),
-            );
+        match (default, missing.first()) {
+            (Some(i), _) => missing.iter().for_each(|&k| material[k] = i),
+            (None, Some(&first)) => {
+                let named: Vec<String> =
+                    self.materials.iter().map(|m| format!("{:?}", m.group.as_deref().unwrap_or(""))).collect();
+                let rule = format!(
+                    "leave {} cells without a material (the first at {}): name a material for every surface group, \
+                     or leave one material's group out to give it the rest; the mesh has {}",
+                    missing.len(),
+                    centre(mesh, first),
+                    describe_groups(mesh)
+                );
+                c.fail("materials", format!("[{}]", named.join(", ")), rule);
+            }
+            (None, None) => {}
         }
         material
     }
@@ -639,4 +660,3 @@ fn centre(mesh: &Mesh, cell: usize) -> String {
     let mean = |k: usize| nodes.iter().map(|&n| mesh.nodes[n][k]).sum::<f64>() / nodes.len() as f64;
     format!("({}, {})", shortest(mean(0)), shortest(mean(1)))
 }
-
