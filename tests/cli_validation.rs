@@ -234,7 +234,11 @@ fn block_rules() {
         "probes.segments[0] = \"Z\" must give exactly one of index (its number), x (m) or at ([x, y] in m)",
     );
     expect_invalid(&b, &["probes.nodes=[{name=\"N\", x=nan}]"], "probes.nodes[0].x = NaN must be a finite number");
-    expect_invalid(&b, &["probes.nodes=[{name=\"N\", at=[1, inf]}]"], "probes.nodes[0].at[1] = inf must be a finite number");
+    expect_invalid(
+        &b,
+        &["probes.nodes=[{name=\"N\", at=[1, inf]}]"],
+        "probes.nodes[0].at[1] = inf must be a finite number",
+    );
 }
 
 #[test]

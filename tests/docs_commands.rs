@@ -226,7 +226,9 @@ fn items(markdown: &str) -> (Vec<Item>, Vec<String>) {
                 for line in block.body.lines().map(str::trim) {
                     if line.starts_with("slipfront: ") {
                         items.push(Item::Output(line.to_string()));
-                    } else if line.starts_with("slipfront ") && !line.split_whitespace().take(3).any(|w| w.ends_with(':')) {
+                    } else if line.starts_with("slipfront ")
+                        && !line.split_whitespace().take(3).any(|w| w.ends_with(':'))
+                    {
                         // A synopsis; `slipfront study NAME: ...` is a message, not one.
                         synopses.push(line.to_string());
                     }

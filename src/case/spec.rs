@@ -745,7 +745,9 @@ impl RecordSpec {
                         let rule = if count == 0 {
                             format!("is not allowed: a {} scene has no nodes", scene.kind())
                         } else {
-                            format!("must be below {count} (the scene has {count} {key}, numbered from 0 along its contacts)")
+                            format!(
+                                "must be below {count} (the scene has {count} {key}, numbered from 0 along its contacts)"
+                            )
                         };
                         c.fail(&format!("{key}[{i}]"), index, rule);
                     }

@@ -112,8 +112,9 @@ pub fn load(path: &Path) -> Result<Study, String> {
     let mut members = Vec::with_capacity(rows.len() * per_row);
     for (r, row) in rows.iter().enumerate() {
         for k in 0..per_row {
-            let member = build(&file, (&base, case_path.parent().unwrap_or(Path::new("."))), r, row, k, r * per_row + k)
-                .map_err(|e| format!("{}: member {} (row {r}, k = {k}): {e}", path.display(), r * per_row + k))?;
+            let member =
+                build(&file, (&base, case_path.parent().unwrap_or(Path::new("."))), r, row, k, r * per_row + k)
+                    .map_err(|e| format!("{}: member {} (row {r}, k = {k}): {e}", path.display(), r * per_row + k))?;
             members.push(member);
         }
     }
