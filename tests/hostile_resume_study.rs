@@ -165,47 +165,70 @@ fn a_resume_refused_for_a_foreign_cut_or_flipped_recording_changes_no_file() {
     }
 }
 
+/// What a resume over the recording with the byte at `at` flipped did: refused it (exit 2,
+/// nothing changed) or left the flip behind (exit 0, the uninterrupted run's series and
+/// catalogs, the flip outside the rows up to the checkpoint); anything else fails.
+fn resume_over_a_flip(tag: &str, bytes: &[u8], at: usize) -> bool {
+    let whole = original();
+    let (dir, middle) = copy_of_original(tag);
+    let mut flipped = bytes.to_vec();
+    flipped[at] ^= 0x10;
+    std::fs::write(file(&dir, ".rrd"), &flipped).unwrap();
+    let before = fingerprint(&dir);
+    let output = resume(&middle, &[]);
+    let all = text(&output);
+    assert!(!all.contains("panicked"), "a flip at byte {at}: {all}");
+    let refused = match code(&output) {
+        2 => {
+            assert!(all.contains("nothing was changed"), "a flip at byte {at}: {all}");
+            assert_eq!(fingerprint(&dir), before, "a flip at byte {at}: a refused resume changed the folder");
+            true
+        }
+        0 => {
+            // The flip lay outside the series' rows up to the checkpoint (in a static part,
+            // written again, or in rows past it, not copied): the continued recording holds
+            // the uninterrupted run's series, row for row.
+            let check = slipfront(&["check", file(&dir, ".rrd").to_str().unwrap()]);
+            assert_eq!(code(&check), 0, "a flip at byte {at}: {}", text(&check));
+            let read = |path: &Path| slipfront::inspect::rrd::read(path).unwrap().series;
+            assert!(read(&file(&dir, ".rrd")) == read(&file(whole, ".rrd")), "a flip at byte {at} spread");
+            for suffix in [".events.csv", ".ruptures.csv"] {
+                assert_eq!(std::fs::read(file(&dir, suffix)).unwrap(), std::fs::read(file(whole, suffix)).unwrap());
+            }
+            false
+        }
+        other => panic!("a flip at byte {at}: exit {other}: {all}"),
+    };
+    std::fs::remove_dir_all(&dir).unwrap();
+    refused
+}
+
 #[test]
 fn a_flipped_byte_in_the_recording_is_refused_or_left_behind_never_copied() {
-    let whole = original();
-    let bytes = std::fs::read(file(whole, ".rrd")).unwrap();
-    let (mut refused, mut repaired) = (0, 0);
+    let bytes = std::fs::read(file(original(), ".rrd")).unwrap();
     // 24 offsets spread over the first sixteenth of the file, most of it the rows up to 300 s.
-    for k in 0..24 {
-        let at = 1000 + k * (bytes.len() / 16 - 1000) / 24;
-        let (dir, middle) = copy_of_original(&format!("flip-{k}"));
-        let mut flipped = bytes.clone();
-        flipped[at] ^= 0x10;
-        std::fs::write(file(&dir, ".rrd"), &flipped).unwrap();
-        let before = fingerprint(&dir);
-        let output = resume(&middle, &[]);
-        let all = text(&output);
-        assert!(!all.contains("panicked"), "a flip at byte {at}: {all}");
-        match code(&output) {
-            2 => {
-                refused += 1;
-                assert!(all.contains("nothing was changed"), "a flip at byte {at}: {all}");
-                assert_eq!(fingerprint(&dir), before, "a flip at byte {at}: a refused resume changed the folder");
-            }
-            0 => {
-                // The flip lay outside the series' rows up to the checkpoint (in a static part,
-                // written again, or in rows past it, not copied): the continued recording holds
-                // the uninterrupted run's series, row for row.
-                repaired += 1;
-                let check = slipfront(&["check", file(&dir, ".rrd").to_str().unwrap()]);
-                assert_eq!(code(&check), 0, "a flip at byte {at}: {}", text(&check));
-                let read = |path: &Path| slipfront::inspect::rrd::read(path).unwrap().series;
-                assert!(read(&file(&dir, ".rrd")) == read(&file(whole, ".rrd")), "a flip at byte {at} spread");
-                for suffix in [".events.csv", ".ruptures.csv"] {
-                    assert_eq!(std::fs::read(file(&dir, suffix)).unwrap(), std::fs::read(file(whole, suffix)).unwrap());
-                }
-            }
-            other => panic!("a flip at byte {at}: exit {other}: {all}"),
-        }
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-    println!("{refused} of 24 flips refused, {repaired} left behind");
-    assert!(refused >= 10, "{refused} of 24 flips refused, {repaired} left behind");
+    let refused = (0..24)
+        .filter(|k| resume_over_a_flip(&format!("flip-{k}"), &bytes, 1000 + k * (bytes.len() / 16 - 1000) / 24))
+        .count();
+    println!("{refused} of 24 flips refused, {} left behind", 24 - refused);
+    assert!(refused >= 10, "{refused} of 24 flips refused, {} left behind", 24 - refused);
+}
+
+#[test]
+fn a_message_under_another_recording_id_ends_what_is_the_runs() {
+    // Every message names its run's recording id in plain bytes; a flip there makes that
+    // message another run's. Early in the file (a row up to the checkpoint) the resume is
+    // refused; late (past it) the message is left behind. Eight of them, spread over the file.
+    let bytes = std::fs::read(file(original(), ".rrd")).unwrap();
+    let id = slipfront::inspect::rrd::read(&file(original(), ".rrd")).unwrap().recording_id.unwrap();
+    let at: Vec<usize> =
+        bytes.windows(id.len()).enumerate().filter(|(_, w)| *w == id.as_bytes()).map(|(i, _)| i).collect();
+    assert!(at.len() > 16, "the recording id occurs {} times", at.len());
+    let picked: Vec<usize> = (1..=8).map(|k| at[k * (at.len() - 1) / 8]).collect();
+    let refused =
+        picked.iter().enumerate().filter(|(k, at)| resume_over_a_flip(&format!("id-{k}"), &bytes, **at)).count();
+    println!("{refused} of 8 flipped ids refused");
+    assert!(refused >= 1, "no flipped id early enough to be refused: {picked:?} of {}", bytes.len());
 }
 
 /// Starts `slipfront resume` of `checkpoint` to 3000 s, writing a checkpoint every 100 s.

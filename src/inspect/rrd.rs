@@ -200,7 +200,17 @@ pub fn from_messages(messages: impl Iterator<Item = Result<LogMsg, String>>) -> 
             recording.blueprint_messages += 1;
             read_view(&chunk, &names, &mut views);
         } else {
-            recording.recording_id.get_or_insert_with(|| store.recording_id().as_str().to_string());
+            let id = store.recording_id().as_str();
+            let first = recording.recording_id.get_or_insert_with(|| id.to_string());
+            if first != id {
+                // One file is one run: a message under another id is damage (or a file put
+                // together from two), and nothing from it on is that run's.
+                recording.problem = Some(format!(
+                    "message {} belongs to recording {id}, not to the file's {first}",
+                    recording.messages
+                ));
+                break;
+            }
             read_data(&chunk, &names, &mut recording);
         }
     }

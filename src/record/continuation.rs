@@ -131,10 +131,10 @@ pub fn verify_log(
 }
 
 /// Sends every temporal row of `previous` up to step `through` to `rec`, but those of the
-/// `skip` entities. Refuses a recording of another run (another recording id). Returns the
-/// rows copied per entity. A file that ends mid-message (a killed run) yields what came
-/// before; the caller checks that it reaches the checkpoint. A decoder's panic on damaged
-/// bytes is an error.
+/// `skip` entities. A file that ends mid-message (a killed run), or goes on with a message of
+/// another recording id, yields what came before; the caller checks that it reaches the
+/// checkpoint. Returns the rows copied per entity. A decoder's panic on damaged bytes is an
+/// error.
 pub fn copy_recording(
     previous: &Path,
     rec: &RecordingStream,
@@ -174,12 +174,10 @@ fn copy_chunks(
         if store.is_blueprint() {
             continue;
         }
-        let id = store.recording_id().as_str();
-        if id != recording_id {
-            return Err(format!(
-                "{} is the recording of another run (recording id {id}; the checkpoint's run is {recording_id})",
-                previous.display()
-            ));
+        if store.recording_id().as_str() != recording_id {
+            // As the reader that verified the file: a message of another run ends what is this
+            // run's; the caller checks that what came before reaches the checkpoint.
+            break;
         }
         let chunk = Chunk::from_arrow_msg(&arrow).map_err(|e| read_error(&e))?;
         let entity = chunk.entity_path().to_string();
