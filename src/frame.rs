@@ -217,6 +217,9 @@ pub struct Frame {
     pub mesh: Vec<[f64; 2]>,
     /// Total friction force `Σ w f_t` (N/m for a block, Pa for unit-area scenes).
     pub friction_force: f64,
+    /// Each contact's own `Σ w f_t` where the body has several (its tractions along its own
+    /// tangent); empty where it has one.
+    pub contact_forces: Vec<f64>,
     /// Displacement of the base (m); for a spring-block, of the spring's far end.
     pub base_displacement: f64,
     /// Block displacement and velocity (spring-block scenes).

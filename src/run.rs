@@ -240,7 +240,8 @@ fn begin<'s, 'b>(
     // node selection, say).
     let needs = sinks.iter().fold(options.needs, |n, s| n.union(s.needs()));
     let detector = EventDetector::new(layout.segments.len(), options.slip_rate_threshold, options.merge_within)
-        .with_instantaneous_rates(layout.instantaneous_slip_rate);
+        .with_instantaneous_rates(layout.instantaneous_slip_rate)
+        .with_contacts(layout.contacts.iter().map(|c| c.segments).collect());
     let mut observers = Observers { sinks, detector, last: None };
     if let Err(e) = begun {
         // The initial state is the last good step: the sinks that began keep it.

@@ -256,3 +256,48 @@ fn two_materials_in_series_carry_the_closed_form_force() {
         assert!((10.0 / (1.0 / g + 1.0 / 1.0e6) - stiffness).abs() / stiffness > 0.3);
     }
 }
+
+/// The double-shear sample (cases/double_shear.toml) with the right contact given the left's
+/// friction is its own mirror image about x = 1 m: the mesh, the piston and the clamps are
+/// symmetric, and walked counter-clockwise the left contact runs down and the right one up, so
+/// left segment `i` (from the top) mirrors segment `47 - i`, with the traction's sign turned.
+/// Each segment's first slip starts when its mirror's does, and no rupture spans the two
+/// contacts, though both slip at once. As shipped, the weaker left contact slips first.
+#[test]
+fn the_double_shear_sample_with_equal_contacts_slips_as_its_mirror_image() {
+    let equal = ["time.t_end=260", "scene.contacts.1.friction.mu_s=0.4", "scene.contacts.1.friction.mu_k=0.2"];
+    let catalog = |overrides: &[&str]| {
+        let case = common::load("double_shear", overrides);
+        let mut scene = scene::build(&case).unwrap();
+        match run(scene.as_mut(), &case.time, &mut Vec::new(), LoopOptions::for_case(&case)) {
+            Outcome::Completed { catalog, .. } => catalog,
+            other => panic!("the run did not complete: {other:?}"),
+        }
+    };
+    let symmetric = catalog(&equal);
+    let first = |segment: usize| symmetric.events.iter().find(|e| e.segment == segment);
+    let mut compared = 0;
+    let mut worst: f64 = 0.0;
+    for i in 0..24 {
+        let (Some(left), Some(right)) = (first(i), first(47 - i)) else {
+            assert!(first(i).is_none() && first(47 - i).is_none(), "segment {i} slips and its mirror does not");
+            continue;
+        };
+        let onset = (left.onset - right.onset).abs() / left.onset;
+        let traction = (left.traction_before + right.traction_before).abs() / left.traction_before.abs();
+        worst = worst.max(onset).max(traction);
+        assert!(onset < 1e-9 && traction < 1e-9, "segment {i}: {left:?} against its mirror {right:?}");
+        compared += 1;
+    }
+    println!("{compared} mirror pairs, worst relative difference {worst:.1e} (onset, traction)");
+    assert!(compared >= 12, "only {compared} segments slipped by 260 s");
+    let both = |r: &slipfront::catalog::events::Rupture| (r.first_segment < 24) != (r.last_segment < 24);
+    assert!(!symmetric.ruptures.iter().any(both), "a rupture spans both contacts: {:?}", symmetric.ruptures);
+    let onsets = |c: &slipfront::catalog::events::Catalog, range: std::ops::Range<usize>| {
+        c.events.iter().filter(|e| range.contains(&e.segment)).map(|e| e.onset).fold(f64::INFINITY, f64::min)
+    };
+    let (left, right) = (onsets(&symmetric, 0..24), onsets(&symmetric, 24..48));
+    assert!((left - right).abs() < 1e-9 * left, "first slips at {left} s and {right} s");
+    let shipped = catalog(&["time.t_end=260"]);
+    assert!(onsets(&shipped, 0..24) < onsets(&shipped, 24..48), "the weaker left contact slips first");
+}

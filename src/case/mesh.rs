@@ -600,8 +600,14 @@ fn nodes_of(mesh: &Mesh, name: &str, key: &str, c: &mut Checker<'_>) -> Vec<usiz
 
 /// A curve group as one open chain of boundary edges, the body on its left.
 fn chain(mesh: &Mesh, name: &str, key: &str, c: &mut Checker<'_>) -> Option<Vec<usize>> {
-    if !matches!(group(mesh, name, key, "curve", c), Some(Members::Lines(_))) {
-        return None;
+    match group(mesh, name, key, "curve", c) {
+        Some(Members::Lines(_)) => {}
+        Some(_) => {
+            let rule = "is a point group; a contact or a loaded boundary is a curve group (its line elements)";
+            c.fail(key, format!("{name:?}"), rule);
+            return None;
+        }
+        None => return None,
     }
     match mesh.boundary_chain(name) {
         Ok(chain) => Some(chain),

@@ -121,6 +121,10 @@ pub struct EventDetector {
     instantaneous: bool,
     tracks: Vec<SegmentTrack>,
     events: Vec<SlipEvent>,
+    /// Segments per contact, where the body has several: a rupture stays on one contact, and
+    /// an event's friction force is its contact's. Empty: one contact.
+    #[serde(default)]
+    contacts: Vec<usize>,
 }
 
 impl EventDetector {
@@ -133,7 +137,15 @@ impl EventDetector {
             instantaneous: false,
             tracks: vec![SegmentTrack::default(); segments],
             events: Vec::new(),
+            contacts: Vec::new(),
         }
+    }
+
+    /// The same detector for a body of several contacts with `segments` segments each, in
+    /// order ([`crate::frame::Layout::contacts`]).
+    pub fn with_contacts(mut self, segments: Vec<usize>) -> Self {
+        self.contacts = if segments.len() > 1 { segments } else { Vec::new() };
+        self
     }
 
     /// The same detector for frames whose slip rates are instantaneous values at the frame's
@@ -145,12 +157,13 @@ impl EventDetector {
 
     /// Feeds one frame (the initial frame, with `dt = 0`, included).
     pub fn record(&mut self, frame: &Frame) {
+        let contact_of = contact_of(&self.contacts);
         for (k, (track, seg)) in self.tracks.iter_mut().zip(&frame.segments).enumerate() {
             let sample = Sample {
                 time: frame.time,
                 slip: seg.slip,
                 traction: seg.traction_t,
-                force: frame.friction_force,
+                force: frame.contact_forces.get(contact_of(k)).copied().unwrap_or(frame.friction_force),
                 structure: seg.structure,
             };
             track.previous = track.current.replace(sample);
@@ -217,7 +230,7 @@ impl EventDetector {
     /// Closes open events and returns the catalog.
     pub fn into_catalog(mut self) -> Catalog {
         self.finish();
-        let ruptures = ruptures(&self.events);
+        let ruptures = ruptures_by_contact(&self.events, &self.contacts);
         Catalog { events: self.events, ruptures }
     }
 }
@@ -235,6 +248,37 @@ fn close(segment: usize, open: Open, at: Sample) -> SlipEvent {
         friction_force_after: at.force,
         structure_before: (open.structure_before > 0.0).then_some(open.structure_before),
     }
+}
+
+/// The contact of segment `k` for contacts of `segments` segments each (0 for one contact).
+fn contact_of(segments: &[usize]) -> impl Fn(usize) -> usize + '_ {
+    move |k| {
+        let mut end = 0;
+        segments
+            .iter()
+            .position(|n| {
+                end += n;
+                k < end
+            })
+            .unwrap_or(0)
+    }
+}
+
+/// [`ruptures`] on each contact of `segments` segments each (one contact where empty), in the
+/// order of their onsets: a rupture never spans two contacts.
+pub fn ruptures_by_contact(events: &[SlipEvent], segments: &[usize]) -> Vec<Rupture> {
+    if segments.len() <= 1 {
+        return ruptures(events);
+    }
+    let contact_of = contact_of(segments);
+    let mut all: Vec<Rupture> = (0..segments.len())
+        .flat_map(|c| {
+            let own: Vec<SlipEvent> = events.iter().filter(|e| contact_of(e.segment) == c).cloned().collect();
+            ruptures(&own)
+        })
+        .collect();
+    all.sort_by(|a, b| a.onset.total_cmp(&b.onset));
+    all
 }
 
 /// Groups events whose time intervals overlap (transitively) into ruptures.
@@ -275,4 +319,38 @@ pub fn ruptures(events: &[SlipEvent]) -> Vec<Rupture> {
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn event(segment: usize, onset: f64, end: f64) -> SlipEvent {
+        SlipEvent {
+            segment,
+            onset,
+            end,
+            slip: 0.01,
+            peak_slip_rate: 0.1,
+            traction_before: 1.0,
+            traction_after: 0.5,
+            friction_force_before: 10.0,
+            friction_force_after: 8.0,
+            structure_before: None,
+        }
+    }
+
+    /// Events that overlap in time on segments 3 and 4 are one rupture on one contact, and two
+    /// where segment 3 ends the first contact and 4 starts the second: a rupture stays on its
+    /// contact, and the ruptures come in the order of their onsets.
+    #[test]
+    fn a_rupture_never_spans_two_contacts() {
+        let events = [event(4, 1.0, 3.0), event(3, 1.5, 2.5), event(0, 2.0, 2.2), event(6, 9.0, 9.5)];
+        let one = ruptures_by_contact(&events, &[]);
+        assert_eq!(one.len(), 2);
+        assert_eq!((one[0].first_segment, one[0].last_segment, one[0].segments_slipped), (0, 4, 3));
+        let two = ruptures_by_contact(&events, &[4, 4]);
+        let spans: Vec<(f64, usize, usize)> = two.iter().map(|r| (r.onset, r.first_segment, r.last_segment)).collect();
+        assert_eq!(spans, [(1.0, 4, 4), (1.5, 0, 3), (9.0, 6, 6)]);
+    }
 }

@@ -304,17 +304,25 @@ pub(crate) fn report(
 /// what the machine has available (`MemAvailable` of `/proc/meminfo`; no check where that is
 /// unknown).
 pub(crate) fn fits_in_memory(case: &case::Case) -> Result<(), String> {
-    let case::SceneSpec::Block(b) = &case.scene else { return Ok(()) };
-    let (dofs, bytes) = scene::block::estimated_memory(b.nx, b.ny);
+    let (what, dofs, bytes) = match &case.scene {
+        case::SceneSpec::Block(b) => {
+            let (dofs, bytes) = scene::block::estimated_memory(b.nx, b.ny);
+            (format!("scene.nx × scene.ny = {} × {}", b.nx, b.ny), dofs, bytes)
+        }
+        case::SceneSpec::Mesh(m) => {
+            let dofs = m.unknowns().unwrap_or(0) as f64;
+            let (contact_nodes, _) = m.contact_sizes();
+            (format!("scene.file = \"{}\"", m.file), dofs, scene::block::body_memory(dofs, contact_nodes))
+        }
+        _ => return Ok(()),
+    };
     let Some(available) = available_memory() else { return Ok(()) };
     if bytes <= available {
         return Ok(());
     }
     Err(format!(
-        "scene.nx × scene.ny = {} × {} is too large: {dofs:.3e} degrees of freedom need about {} of memory, \
-         and {} is available; use a coarser mesh",
-        b.nx,
-        b.ny,
+        "{what} is too large: {dofs:.3e} degrees of freedom need about {} of memory, and {} is available; use a \
+         coarser mesh",
         human_bytes(bytes),
         human_bytes(available)
     ))

@@ -402,16 +402,15 @@ fn check_time_axis(
 /// the run ends, only in a file that reached its end.
 fn check_spatial(recording: &Recording, info: &RunInfo, early: bool, report: &mut Report) {
     if info.spatial {
-        let mut entities = vec![schema::SPATIAL_CONTACT, schema::SPATIAL_MESH];
+        let mut entities: Vec<String> =
+            [schema::SPATIAL_CONTACT, schema::SPATIAL_MESH].into_iter().map(String::from).collect();
         if !early {
-            entities.extend([schema::SPACETIME_IMAGE, schema::SPACETIME_NOW]);
+            entities.extend([schema::SPACETIME_IMAGE, schema::SPACETIME_NOW].map(String::from));
         }
-        entities.push(schema::CONTACT_STATE);
-        if info.kind.has_body() && info.segments > 1 {
-            entities.push(schema::PROFILE_TRACTION);
-        }
+        entities.push(schema::CONTACT_STATE.into());
+        entities.extend(info.traction_profiles());
         for entity in entities {
-            if !recording.entities.contains(entity) {
+            if !recording.entities.contains(entity.as_str()) {
                 report.problems.push(format!("missing entity {entity} of the spatial views"));
             }
         }

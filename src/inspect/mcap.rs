@@ -249,6 +249,8 @@ fn assemble(header: &LogHeader, parts: BTreeMap<u32, Parts>) -> (Vec<Frame>, usi
             surface_nodes,
             mesh,
             friction_force: totals.friction_force,
+            // The log keeps the body's total only.
+            contact_forces: Vec::new(),
             base_displacement: totals.base_u_x,
             block: layout.kind.has_block().then_some([totals.block_x, totals.block_v]),
         });

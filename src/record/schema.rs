@@ -86,6 +86,15 @@ pub const PROFILE_TRACTION: &str = "profile/traction_t";
 pub const PROFILE_SLIP_RATE: &str = "profile/slip_rate";
 pub const PROFILE_STRUCTURE: &str = "profile/structure";
 
+/// A profile entity of one contact: `profile/{quantity}` where the scene has one contact (the
+/// constants above), `profile/{contact}/{quantity}` where it has several.
+pub fn profile_entity(contact: Option<&str>, quantity: &str) -> String {
+    match contact {
+        None => format!("{PROFILE}/{quantity}"),
+        Some(contact) => format!("{PROFILE}/{contact}/{quantity}"),
+    }
+}
+
 /// The run a recording (or MCAP log) describes, known before it starts.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RecordingPlan {
@@ -382,9 +391,25 @@ pub struct RunInfo {
     pub slip_rate_threshold: f64,
     /// In stick, every `stick_every`-th step is recorded; every step while a segment slips.
     pub stick_every: u64,
+    /// The contacts' names, where the scene has several (each has its own profiles); empty
+    /// for one.
+    #[serde(default)]
+    pub contacts: Vec<String>,
 }
 
 impl RunInfo {
+    /// The traction profile of every contact, where the views have profiles: a body of more
+    /// than one segment.
+    pub fn traction_profiles(&self) -> Vec<String> {
+        if !(self.kind.has_body() && self.segments > 1) {
+            return Vec::new();
+        }
+        if self.contacts.is_empty() {
+            return vec![PROFILE_TRACTION.to_string()];
+        }
+        self.contacts.iter().map(|c| profile_entity(Some(c), "traction_t")).collect()
+    }
+
     /// How the run steps ([`RecordingPlan::stepping`]).
     pub fn stepping(&self) -> String {
         stepping(self.integrator, self.tolerance, self.steps, self.dt, &self.chosen_because, self.accuracy)
@@ -434,6 +459,7 @@ impl RunInfo {
             magnification: plan.spec.magnification,
             slip_rate_threshold: plan.slip_rate_threshold,
             stick_every: plan.spec.stick_every,
+            contacts: layout.contacts.iter().map(|c| c.name.clone()).collect(),
         }
     }
 }

@@ -24,10 +24,16 @@ use crate::scene::interface::RunError;
 /// measured). Adaptive runs, which never condense, need less.
 pub fn estimated_memory(nx: usize, ny: usize) -> (f64, f64) {
     let dofs = 2.0 * (nx as f64 + 1.0) * (ny as f64 + 1.0);
-    let contact = nx as f64 + 1.0;
+    (dofs, body_memory(dofs, nx.saturating_add(1)))
+}
+
+/// [`estimated_memory`] of any body of `dofs` degrees of freedom whose contacts have
+/// `contact_unknowns` tangential unknowns (bytes).
+pub fn body_memory(dofs: f64, contact_unknowns: usize) -> f64 {
+    let contact = contact_unknowns as f64;
     let condensed =
-        if condensation_pays(dofs as usize, nx.saturating_add(1)) { 3.0 * 8.0 * contact * contact } else { 0.0 };
-    (dofs, 16.0e6 + 200.0 * dofs * dofs.log2() + condensed)
+        if condensation_pays(dofs as usize, contact_unknowns) { 3.0 * 8.0 * contact * contact } else { 0.0 };
+    16.0e6 + 200.0 * dofs * dofs.log2() + condensed
 }
 
 /// The paper's block as a scene.

@@ -21,6 +21,8 @@ pub struct BodyShape {
     surface_nodes: Vec<usize>,
     /// The mesh nodes the drawing draws, in its order.
     drawn: Vec<usize>,
+    /// Each contact's points, where there are several.
+    contact_points: Vec<std::ops::Range<usize>>,
 }
 
 /// A body scene.
@@ -64,8 +66,14 @@ pub fn build(case: &Case, assembled: Assembled, presentation: Presentation) -> R
         .flat_map(|segments| segments.iter().map(|s| s.nodes[0]).chain(segments.last().map(|s| s.nodes[1])))
         .collect();
     let layout = layout(case, &contacts, &presentation);
-    let shape =
-        BodyShape { dofs, segments: contacts.iter().map(Vec::len).sum(), surface_nodes, drawn: presentation.drawing.1 };
+    let several = contact.surfaces.len() > 1;
+    let shape = BodyShape {
+        dofs,
+        segments: contacts.iter().map(Vec::len).sum(),
+        surface_nodes,
+        drawn: presentation.drawing.1,
+        contact_points: if several { contact.surfaces.iter().map(|s| s.points.clone()).collect() } else { Vec::new() },
+    };
     let system = System::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |p| p / 2))?;
     Ok(DynamicScene::assemble(case, system, layout, shape))
 }
@@ -127,7 +135,11 @@ impl Shape for BodyShape {
                 )
             })
             .collect();
-        let friction_force = points.iter().zip(&s.contact).map(|(p, c)| p.weight * c.traction_t).sum();
+        let force = |range: std::ops::Range<usize>| -> f64 {
+            points[range.clone()].iter().zip(&s.contact[range]).map(|(p, c)| p.weight * c.traction_t).sum()
+        };
+        let friction_force = force(0..points.len());
+        let contact_forces = self.contact_points.iter().map(|r| force(r.clone())).collect();
         let displacement =
             |nodes: &[usize]| nodes.iter().map(|&n| self.dofs.displacement(n, &s.displacement, s.time)).collect();
         Frame {
@@ -138,6 +150,7 @@ impl Shape for BodyShape {
             surface_nodes: if needs.surface_nodes { displacement(&self.surface_nodes) } else { Vec::new() },
             mesh: if needs.mesh { displacement(&self.drawn) } else { Vec::new() },
             friction_force,
+            contact_forces,
             base_displacement: system.contact.surfaces[0].main_body.motion.displacement_at(s.time)[0],
             block: None,
         }

@@ -54,7 +54,7 @@ pub struct Contents<'a> {
     /// The event threshold on the slip rate (m/s), for the slip-rate profile's scale.
     pub slip_rate_threshold: f64,
     /// The profile entities written ([`crate::sink::slip_front`]).
-    pub profiles: Vec<&'static str>,
+    pub profiles: Vec<String>,
 }
 
 /// A view's extra properties, written beside it.
@@ -228,30 +228,43 @@ fn block_and_profiles(contents: &Contents<'_>, properties: &mut Vec<Properties>)
     if contents.profiles.is_empty() {
         return block;
     }
-    let mut chart = |name: &str, entities: &[&str]| -> ContainerLike {
+    let mut chart = |name: &str, entities: &[String]| -> ContainerLike {
         let view: ContainerLike =
             BarChartView::new(name).with_contents(entities.iter().map(|e| format!("/{e}"))).into();
         let legend = (entities.len() > 1).then_some(Corner2D::LeftTop);
         properties.push(Properties { path: path_of(&view), batches: vec![("PlotLegend", legend_batches(legend))] });
         view
     };
-    let strength: Vec<&str> =
-        [schema::PROFILE_STATIC_STRENGTH, schema::PROFILE_KINETIC_STRENGTH, schema::PROFILE_TRACTION]
-            .into_iter()
-            .filter(|e| contents.profiles.contains(e))
-            .collect();
-    Horizontal::new([
-        block,
-        Vertical::new([
-            chart(VIEW_STRENGTH, &strength),
-            chart(&slip_rate_name(contents.slip_rate_threshold), &[schema::PROFILE_SLIP_RATE]),
-            chart(VIEW_STRUCTURE_PROFILE, &[schema::PROFILE_STRUCTURE]),
+    let several = contents.layout.contacts.len() > 1;
+    let mut per_contact: Vec<ContainerLike> = Vec::new();
+    for (name, _, _) in contents.layout.contact_ranges() {
+        let contact = several.then_some(name.as_str());
+        let written = |quantities: &[&str]| -> Vec<String> {
+            quantities
+                .iter()
+                .map(|q| schema::profile_entity(contact, q))
+                .filter(|e| contents.profiles.contains(e))
+                .collect()
+        };
+        // The block's contact runs along x; any other along its arc length.
+        let along = |view: &str| match (contents.layout.kind, contact) {
+            (SceneKind::Block, _) => view.to_string(),
+            (_, Some(c)) => view.replacen("Along x (m)", &format!("Along {c} (m)"), 1),
+            (_, None) => view.replacen("Along x (m)", "Along the contact (m)", 1),
+        };
+        let column: ContainerLike = Vertical::new([
+            chart(&along(VIEW_STRENGTH), &written(&["static_strength", "kinetic_strength", "traction_t"])),
+            chart(&along(&slip_rate_name(contents.slip_rate_threshold)), &written(&["slip_rate"])),
+            chart(&along(VIEW_STRUCTURE_PROFILE), &written(&["structure"])),
         ])
         .with_row_shares([2.0, 1.4, 1.0])
-        .into(),
-    ])
-    .with_column_shares([3.0, 2.0])
-    .into()
+        .with_name(name)
+        .into();
+        per_contact.push(column);
+    }
+    let profiles: ContainerLike =
+        if per_contact.len() == 1 { per_contact.remove(0) } else { Tabs::new(per_contact).into() };
+    Horizontal::new([block, profiles]).with_column_shares([3.0, 2.0]).into()
 }
 
 /// The name of the slip-rate profile: its log scale and the floor it counts from
@@ -269,9 +282,17 @@ pub const LANES_AT_OPEN: usize = 11;
 /// The middle row: the space-time map, and the stick/slip lanes beside it while they fit
 /// ([`LANES_AT_OPEN`]); more lanes go in a tab behind the map, which shows every segment.
 fn map_and_lanes(contents: &Contents<'_>) -> ContainerLike {
+    // The block's contact runs along x; a mesh's contacts along their arc lengths.
+    let (lanes_name, map_name) = match contents.layout.kind {
+        SceneKind::Block => (VIEW_STATE.to_string(), VIEW_SPACETIME.to_string()),
+        _ => (
+            VIEW_STATE.replace("from x = 0 at the top", "along each contact from its start, the first at the top"),
+            VIEW_SPACETIME.replace("x down", "each contact's arc length down"),
+        ),
+    };
     let lanes: ContainerLike =
-        StateTimelineView::new(VIEW_STATE).with_contents([format!("/{}", schema::CONTACT_STATE)]).into();
-    let map: ContainerLike = Spatial2DView::new(VIEW_SPACETIME).with_origin(format!("/{}", schema::SPACETIME)).into();
+        StateTimelineView::new(lanes_name).with_contents([format!("/{}", schema::CONTACT_STATE)]).into();
+    let map: ContainerLike = Spatial2DView::new(map_name).with_origin(format!("/{}", schema::SPACETIME)).into();
     if contents.segments.len() <= LANES_AT_OPEN {
         return Horizontal::new([map, lanes]).with_column_shares([3.0, 2.0]).into();
     }

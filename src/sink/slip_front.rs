@@ -3,8 +3,9 @@
 //! * `contact/state`: a `StateChange` lane per recorded segment (`stick` or `slip`, the event
 //!   threshold on the slip rate), written only where a segment changes state, so a rupture
 //!   reads as lanes switching one after another.
-//! * `profile/*`: bar charts over the segments' centres (x in m) at every recorded step, so the
-//!   playhead shows the profile along the surface: tangential traction `f_t` between the static
+//! * `profile/*`: bar charts over the segments' centres (arc length along the contact in m, the
+//!   block's x) at every recorded step, one set per contact (`profile/{contact}/*` where the
+//!   body has several), so the playhead shows the profile along each contact: tangential traction `f_t` between the static
 //!   strength `μ_k f_n / R*` (the superloading surface) and the kinetic strength `μ_k f_n` (the
 //!   normal sliding-yield surface), the slip rate on a log scale ([`slip_rate_decades`]), and
 //!   the degree of structure `1/R*`. The
@@ -17,14 +18,15 @@ use rerun::{BarChart, RecordingStream, StateChange, StateConfiguration, TimeColu
 use crate::frame::{Frame, Layout};
 use crate::record::schema;
 
-/// The profile entities, what each shows of a segment, and its bars' colour and relative
-/// width: the strengths wide and pale behind the traction.
+/// The profiles (the last part of their entity paths, [`schema::profile_entity`]), what each
+/// shows of a segment, and its bars' colour and relative width: the strengths wide and pale
+/// behind the traction.
 const PROFILES: [(&str, Profile, [u8; 4], f32); 5] = [
-    (schema::PROFILE_STATIC_STRENGTH, Profile::StaticStrength, [190, 190, 190, 255], 0.9),
-    (schema::PROFILE_KINETIC_STRENGTH, Profile::KineticStrength, [120, 160, 210, 255], 0.7),
-    (schema::PROFILE_TRACTION, Profile::Traction, [230, 120, 40, 255], 0.4),
-    (schema::PROFILE_SLIP_RATE, Profile::SlipRate, [220, 60, 60, 255], 0.8),
-    (schema::PROFILE_STRUCTURE, Profile::Structure, [90, 170, 110, 255], 0.8),
+    ("static_strength", Profile::StaticStrength, [190, 190, 190, 255], 0.9),
+    ("kinetic_strength", Profile::KineticStrength, [120, 160, 210, 255], 0.7),
+    ("traction_t", Profile::Traction, [230, 120, 40, 255], 0.4),
+    ("slip_rate", Profile::SlipRate, [220, 60, 60, 255], 0.8),
+    ("structure", Profile::Structure, [90, 170, 110, 255], 0.8),
 ];
 
 #[derive(Debug, Clone, Copy)]
@@ -42,14 +44,16 @@ pub struct SlipFront {
     mu_k: Option<f64>,
     /// The recorded segments (the lanes).
     segments: Vec<usize>,
-    /// Whether the profiles are written (block scenes of more than one segment).
+    /// Each contact's name (where the body has several) and segments.
+    contacts: Vec<(Option<String>, std::ops::Range<usize>)>,
+    /// Whether the profiles are written (bodies of more than one segment).
     profiles: bool,
     last_state: Option<Vec<bool>>,
     state_steps: Vec<i64>,
     state_times: Vec<f64>,
     states: Vec<&'static str>,
-    /// One tensor per row and profile, profile-major.
-    bars: Vec<Vec<TensorData>>,
+    /// One tensor per row, per contact and profile (`bars[contact][profile]`).
+    bars: Vec<Vec<Vec<TensorData>>>,
 }
 
 impl SlipFront {
@@ -60,12 +64,13 @@ impl SlipFront {
             threshold,
             mu_k,
             segments: segments.to_vec(),
+            contacts: contacts(layout),
             profiles: layout.kind.has_body() && layout.segments.len() > 1,
             last_state: None,
             state_steps: Vec::new(),
             state_times: Vec::new(),
             states: Vec::new(),
-            bars: vec![Vec::new(); PROFILES.len()],
+            bars: vec![vec![Vec::new(); PROFILES.len()]; layout.contact_ranges().len()],
         }
     }
 
@@ -74,9 +79,14 @@ impl SlipFront {
         self.profiles
     }
 
-    /// The profile entities this run writes.
-    pub fn profile_entities(&self) -> Vec<&'static str> {
-        PROFILES.iter().filter(|p| self.writes(p.1)).map(|p| p.0).collect()
+    /// The profile entities this run writes, contact by contact.
+    pub fn profile_entities(&self) -> Vec<String> {
+        self.contacts
+            .iter()
+            .flat_map(|(contact, _)| {
+                PROFILES.iter().filter(|p| self.writes(p.1)).map(|p| schema::profile_entity(contact.as_deref(), p.0))
+            })
+            .collect()
     }
 
     fn writes(&self, profile: Profile) -> bool {
@@ -95,19 +105,22 @@ impl SlipFront {
         if !self.profiles {
             return Ok(());
         }
-        let centres: Vec<f64> = layout.segments.iter().map(|s| 0.5 * (s.left + s.right)).collect();
-        for (entity, profile, [r, g, b, a], share) in PROFILES {
-            if !self.writes(profile) {
-                continue;
+        for (contact, range) in &self.contacts {
+            let segments = &layout.segments[range.clone()];
+            let centres: Vec<f64> = segments.iter().map(|s| 0.5 * (s.left + s.right)).collect();
+            for (quantity, profile, [r, g, b, a], share) in PROFILES {
+                if !self.writes(profile) {
+                    continue;
+                }
+                let widths: Vec<f32> = segments.iter().map(|s| (share as f64 * (s.right - s.left)) as f32).collect();
+                rec.log_static(
+                    schema::profile_entity(contact.as_deref(), quantity),
+                    &BarChart::update_fields()
+                        .with_abscissa(TensorData::from(centres.clone()))
+                        .with_widths(widths)
+                        .with_color(rerun::Color::from_unmultiplied_rgba(r, g, b, a)),
+                )?;
             }
-            let widths: Vec<f32> = layout.segments.iter().map(|s| (share as f64 * (s.right - s.left)) as f32).collect();
-            rec.log_static(
-                entity,
-                &BarChart::update_fields()
-                    .with_abscissa(TensorData::from(centres.clone()))
-                    .with_widths(widths)
-                    .with_color(rerun::Color::from_unmultiplied_rgba(r, g, b, a)),
-            )?;
         }
         Ok(())
     }
@@ -138,11 +151,15 @@ impl SlipFront {
         if !self.profiles {
             return;
         }
-        for (i, (_, profile, _, _)) in PROFILES.iter().enumerate() {
-            if self.writes(*profile) {
-                let values: Vec<f32> =
-                    frame.segments.iter().map(|s| value(*profile, s, self.mu_k, self.threshold) as f32).collect();
-                self.bars[i].push(TensorData::from(values));
+        for (c, (_, range)) in self.contacts.iter().enumerate() {
+            for (i, (_, profile, _, _)) in PROFILES.iter().enumerate() {
+                if self.writes(*profile) {
+                    let values: Vec<f32> = frame.segments[range.clone()]
+                        .iter()
+                        .map(|s| value(*profile, s, self.mu_k, self.threshold) as f32)
+                        .collect();
+                    self.bars[c][i].push(TensorData::from(values));
+                }
             }
         }
     }
@@ -151,14 +168,19 @@ impl SlipFront {
     /// their own.
     pub fn send(&mut self, rec: &RecordingStream, times: &[TimeColumn; 2]) -> Result<(), String> {
         let error = |e: &dyn std::fmt::Display| e.to_string();
-        for (i, (entity, _, _, _)) in PROFILES.iter().enumerate() {
-            let rows = std::mem::take(&mut self.bars[i]);
-            if rows.is_empty() {
-                continue;
+        for (c, (contact, _)) in self.contacts.iter().enumerate() {
+            for (i, (quantity, _, _, _)) in PROFILES.iter().enumerate() {
+                let rows = std::mem::take(&mut self.bars[c][i]);
+                if rows.is_empty() {
+                    continue;
+                }
+                let columns = BarChart::update_fields()
+                    .with_many_values(rows)
+                    .columns_of_unit_batches()
+                    .map_err(|e| error(&e))?;
+                let entity = schema::profile_entity(contact.as_deref(), quantity);
+                rec.send_columns(entity, times.clone(), columns).map_err(|e| error(&e))?;
             }
-            let columns =
-                BarChart::update_fields().with_many_values(rows).columns_of_unit_batches().map_err(|e| error(&e))?;
-            rec.send_columns(*entity, times.clone(), columns).map_err(|e| error(&e))?;
         }
         if self.state_steps.is_empty() {
             return Ok(());
@@ -175,6 +197,12 @@ impl SlipFront {
         rec.send_columns(schema::CONTACT_STATE, state_times, columns).map_err(|e| error(&e))?;
         Ok(())
     }
+}
+
+/// Each contact's name where the layout has several, and its segments.
+fn contacts(layout: &Layout) -> Vec<(Option<String>, std::ops::Range<usize>)> {
+    let several = layout.contacts.len() > 1;
+    layout.contact_ranges().into_iter().map(|(name, segments, _)| (several.then_some(name), segments)).collect()
 }
 
 /// A segment's value in `profile`; the strengths are the superloading surface `μ_k f_n / R*`

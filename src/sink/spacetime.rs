@@ -142,11 +142,13 @@ impl SpaceTime {
         )
     }
 
-    /// Tick marks: `sim_time` (s) under the map every tenth of the run, x (m) on its left at
-    /// round lengths (none for a surface without a length, such as a spring-block's).
+    /// Tick marks: `sim_time` (s) under the map every tenth of the run; on its left, each
+    /// contact's arc length (m; the block's x) at round lengths over its band of lanes, and the
+    /// contact's name where there are several (none for a surface without a length, such as a
+    /// spring-block's).
     fn ticks(&self, layout: &Layout) -> (Vec<[f32; 2]>, Vec<String>) {
-        let width_m = layout.segments.last().map_or(0.0, |s| s.right);
         let height = map_height(self.segments) as f64;
+        let lane = lane_height(self.segments) as f64;
         let mut positions = Vec::new();
         let mut labels = Vec::new();
         let t_end = self.t_span * self.bins as f64 / TIME_BINS as f64;
@@ -154,9 +156,23 @@ impl SpaceTime {
             positions.push([(t / self.t_span * TIME_BINS as f64) as f32, (height + 15.0) as f32]);
             labels.push(format!("{} s", shortest(t)));
         }
-        for x in ticks_over(width_m, 5.0) {
-            positions.push([-30.0, (x / width_m * height) as f32]);
-            labels.push(format!("{} m", shortest(x)));
+        let several = layout.contacts.len() > 1;
+        for (name, segments, _) in layout.contact_ranges() {
+            let Some((first, last)) =
+                layout.segments.get(segments.start).zip(layout.segments.get(segments.end.wrapping_sub(1)))
+            else {
+                continue;
+            };
+            let (start, length) = (first.left, last.right - first.left);
+            let (top, band) = (segments.start as f64 * lane, segments.len() as f64 * lane);
+            if several {
+                positions.push([-120.0, top as f32]);
+                labels.push(name);
+            }
+            for x in ticks_over(length, if several { 3.0 } else { 5.0 }) {
+                positions.push([-30.0, (top + x / length * band) as f32]);
+                labels.push(format!("{} m", shortest(start + x)));
+            }
         }
         (positions, labels)
     }
