@@ -301,3 +301,57 @@ fn the_double_shear_sample_with_equal_contacts_slips_as_its_mirror_image() {
     let shipped = catalog(&["time.t_end=260"]);
     assert!(onsets(&shipped, 0..24) < onsets(&shipped, 24..48), "the weaker left contact slips first");
 }
+
+/// A case naming the groups of tests/meshes/groups.msh (a rectangle of two surfaces in one
+/// group "body", with curve groups that are not one open chain) with `set` applied.
+fn groups_case(set: &[&str]) -> Result<Case, String> {
+    groups_case_text(&stuck_case_text("groups.msh", BODY), set)
+}
+
+fn groups_case_text(text: &str, set: &[&str]) -> Result<Case, String> {
+    let owned: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+    case::from_str_at(text, &owned, std::path::Path::new(&repository("tests/meshes"))).map_err(|e| e.to_string())
+}
+
+/// Every mistake in naming the mesh's groups is refused before anything runs, naming the key,
+/// the group and what the mesh has or what is allowed.
+#[test]
+fn groups_the_mesh_lacks_or_that_cannot_serve_are_refused_naming_them() {
+    groups_case(&[]).unwrap();
+    let refused = [
+        (
+            "scene.materials.0.group=\"soil\"",
+            "scene.materials[0].group = \"soil\" names no group of the mesh; it has \"corner\" (point), \"bottom\" \
+             (curve), \"top\" (curve), \"outline\" (curve), \"bottom_and_top\" (curve), \"inner\" (curve), \"right\" \
+             (curve), \"body\" (surface)",
+        ),
+        (
+            "scene.materials.0.group=\"bottom\"",
+            "scene.materials[0].group = \"bottom\" is a curve group; a surface group is needed here",
+        ),
+        (
+            "scene.contacts.0.group=\"outline\"",
+            "scene.contacts[0].group = \"outline\" is not one open chain of boundary edges: physical group \"outline\" \
+             is a closed loop of 20 lines (through node 1)",
+        ),
+        (
+            "scene.contacts.0.group=\"bottom_and_top\"",
+            "physical group \"bottom_and_top\" has 2 disjoint pieces (from node 1 to node 3, from node 4 to node 6)",
+        ),
+        ("scene.contacts.0.group=\"inner\"", "it is inside the body, not on its boundary"),
+        ("scene.contacts.0.group=\"corner\"", "scene.contacts[0].group = \"corner\" is a point group"),
+    ];
+    for (set, says) in refused {
+        let error = groups_case(&[set]).err().unwrap_or_else(|| panic!("{set} was accepted"));
+        assert!(error.contains(says), "{set}: {error}");
+    }
+    // The right side moved: its bottom node is the contact's last. A fixed side is accepted
+    // (the contact sees the node still).
+    let fixed_right = stuck_case_text("groups.msh", BODY).replace("group = \"top\"", "group = \"right\"");
+    groups_case_text(&fixed_right, &[]).unwrap();
+    let moved_right = fixed_right.replace("fixed = \"xy\"", "velocity = [0.0, 1.0e-3]");
+    let error = groups_case_text(&moved_right, &[]).unwrap_err();
+    let says = "scene.boundaries = [...] the node at (4, 0) is on contact \"bottom\" and on a boundary that moves it; \
+                a contact's nodes may be fixed but not moved";
+    assert!(error.contains(says), "{error}");
+}

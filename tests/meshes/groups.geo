@@ -1,0 +1,29 @@
+// A 4 m x 1 m rectangle split by an interior line at x = 2 into two surfaces, with curve groups
+// that are not one open chain of boundary edges, for the refusals of tests/mesh_cases.rs.
+// Written with Gmsh 4.15.2:  gmsh -2 -format msh41 groups.geo -o groups.msh
+h = 0.5;
+Point(1) = {0, 0, 0, h};
+Point(2) = {2, 0, 0, h};
+Point(3) = {4, 0, 0, h};
+Point(4) = {4, 1, 0, h};
+Point(5) = {2, 1, 0, h};
+Point(6) = {0, 1, 0, h};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 5};
+Line(5) = {5, 6};
+Line(6) = {6, 1};
+Line(7) = {2, 5};
+Curve Loop(1) = {1, 7, 5, 6};
+Plane Surface(1) = {1};
+Curve Loop(2) = {2, 3, 4, -7};
+Plane Surface(2) = {2};
+Physical Surface("body") = {1, 2};
+Physical Curve("bottom") = {1, 2};
+Physical Curve("top") = {4, 5};
+Physical Curve("outline") = {1, 2, 3, 4, 5, 6};
+Physical Curve("bottom_and_top") = {1, 2, 4, 5};
+Physical Curve("inner") = {7};
+Physical Curve("right") = {3};
+Physical Point("corner") = {1};
