@@ -115,8 +115,8 @@ pub fn verify_log(
         let (count, found) = &scanned.topics[topic.as_str()];
         if *count != rows {
             return Err(format!(
-                "{name} holds {count} messages on {topic} where the checkpoint counts {rows}: it is cut short before \
-                 the checkpoint{}",
+                "{name} holds {count} messages on {topic} where the checkpoint counts {rows}: it is cut short or \
+                 damaged before the checkpoint{}",
                 scanned.problem.as_ref().map(|p| format!(" ({p})")).unwrap_or_default()
             ));
         }
