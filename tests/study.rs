@@ -1,7 +1,7 @@
 //! `slipfront study`: bad study files refused before anything runs, shards that add up to the
-//! whole study, a killed study resumed to the same files, and the output folder read by the
-//! official Rerun SDK as one dataset, in the test's own process and served by `rerun server` to
-//! another.
+//! whole study (the tables of a part naming the members missing), a killed study resumed to the
+//! same files, and the output folder read by the official Rerun SDK as one dataset, in the
+//! test's own process and served by `rerun server` to another.
 
 mod common;
 
@@ -88,10 +88,22 @@ fn shards_add_up_to_the_whole_study_and_a_killed_study_resumes_to_the_same_files
     assert_eq!(code, 0, "{text}");
     // Two shards into one folder, one after the other as two machines would.
     let sharded = dir.join("sharded");
-    for shard in ["1/2", "2/2"] {
-        let (code, text) = study(&[path, "--out-dir", sharded.to_str().unwrap(), "--shard", shard, "--quiet"]);
-        assert_eq!(code, 0, "{text}");
+    let out = sharded.to_str().unwrap();
+    let (code, text) = study(&[path, "--out-dir", out, "--shard", "1/2", "--quiet"]);
+    assert_eq!(code, 0, "{text}");
+    // The tables of half a study name the members missing, and say so by their exit.
+    let (code, text) = study(&[path, "--out-dir", out, "--summarize"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("2 of 4 finished, 0 failed, 2 missing") && text.contains("2 members missing"), "{text}");
+    let summary = std::fs::read_to_string(sharded.join("small/summary.md")).unwrap();
+    for member in ["member-0001", "member-0003"] {
+        assert!(summary.contains(&format!("- {member} (")), "{summary}");
     }
+    assert!(summary.contains("## Missing members") && !summary.contains("- member-0000 ("), "{summary}");
+    let (code, text) = study(&[path, "--out-dir", out, "--shard", "2/2", "--quiet"]);
+    assert_eq!(code, 0, "{text}");
+    let (code, text) = study(&[path, "--out-dir", out, "--summarize", "--quiet"]);
+    assert_eq!(code, 0, "{text}");
     let expected = study_files(&whole.join("small"));
     assert_eq!(expected.len(), 4 * 3 + 3, "4 members × (events, ruptures, done) + events.csv, summary.md, summary.png");
     assert_eq!(study_files(&sharded.join("small")), expected, "sharded and whole studies differ");

@@ -65,6 +65,12 @@ pub fn command(args: StudyArgs) -> ExitCode {
         return write_array_job(&args, &study, tasks);
     }
     let dir = args.out_dir.join(&study.name);
+    if args.summarize && !dir.is_dir() {
+        return fail(
+            EXIT_INVALID,
+            format!("--summarize: {} is not a folder: give the --out-dir the study ran into", dir.display()),
+        );
+    }
     if let Err(e) = std::fs::create_dir_all(&dir) {
         return fail(EXIT_INVALID, format!("cannot create the study's folder {}: {e}", dir.display()));
     }
@@ -176,22 +182,7 @@ fn write_array_job(args: &StudyArgs, study: &Study, tasks: usize) -> ExitCode {
         return fail(EXIT_INVALID, e);
     }
     let jobs = args.jobs.unwrap_or(1);
-    let absolute =
-        |path: &Path, what: &str| std::fs::canonicalize(path).map_err(|e| format!("{what} {}: {e}", path.display()));
-    if let Err(e) = std::fs::create_dir_all(slurm::folder(&args.out_dir, &study.name)) {
-        return fail(
-            EXIT_INVALID,
-            format!("cannot create the folder of the study's logs under {}: {e}", args.out_dir.display()),
-        );
-    }
-    let paths = absolute(&args.study, "the study file")
-        .and_then(|study_file| Ok((study_file, absolute(&args.out_dir, "--out-dir")?)))
-        .and_then(|(study_file, out_dir)| {
-            let exe = std::env::current_exe().map_err(|e| format!("cannot tell where slipfront is: {e}"))?;
-            slurm::check_path(&out_dir, "--out-dir")?;
-            slurm::check_path(Path::new(&study.name), "the study's name")?;
-            Ok((study_file, out_dir, exe))
-        });
+    let paths = array_job_paths(args, study);
     let (study_file, out_dir, slipfront) = match paths {
         Ok(paths) => paths,
         Err(e) => return fail(EXIT_INVALID, e),
@@ -226,6 +217,21 @@ fn write_array_job(args: &StudyArgs, study: &Study, tasks: usize) -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(exit) => exit,
     }
+}
+
+/// The absolute paths an array job's script names: the study file, the `--out-dir` (each
+/// checked for what a `#SBATCH` line can hold) and the `slipfront` binary; the folder of its
+/// logs is created.
+fn array_job_paths(args: &StudyArgs, study: &Study) -> Result<(PathBuf, PathBuf, PathBuf), String> {
+    let study_file = std::fs::canonicalize(&args.study).map_err(|e| format!("{}: {e}", args.study.display()))?;
+    let out_dir =
+        std::path::absolute(&args.out_dir).map_err(|e| format!("--out-dir {}: {e}", args.out_dir.display()))?;
+    slurm::check_path(&out_dir, "--out-dir")?;
+    slurm::check_path(Path::new(&study.name), "the study's name")?;
+    let slipfront = std::env::current_exe().map_err(|e| format!("cannot tell where slipfront is: {e}"))?;
+    let logs = slurm::folder(&out_dir, &study.name);
+    std::fs::create_dir_all(&logs).map_err(|e| format!("cannot create the folder {}: {e}", logs.display()))?;
+    Ok((study_file, out_dir, slipfront))
 }
 
 /// Records in `dir` of members `study` does not have (the study file was edited to fewer).

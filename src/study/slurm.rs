@@ -106,7 +106,6 @@ pub fn script(job: &ArrayJob<'_>) -> String {
 #SBATCH --output={logs_text}/{name}-%A_%a.out
 #SBATCH --open-mode=append
 
-set -u
 : "${{SLURM_ARRAY_TASK_ID:?this script is a Slurm job array: submit it with sbatch}}"
 slipfront={slipfront}
 study={study}
@@ -117,8 +116,8 @@ name={name_quoted}
 # (--time=00:30:00) if your site asks for one.
 summary_options=(--ntasks=1 --cpus-per-task=1)
 
-echo "slipfront study $name: task $SLURM_ARRAY_TASK_ID of {tasks} (job ${{SLURM_ARRAY_JOB_ID}}_$SLURM_ARRAY_TASK_ID)" \
-    "on $(hostname), run ${{SLURM_RESTART_COUNT:-0}} times before, at $(date '+%Y-%m-%d %H:%M:%S')"
+echo "slipfront study $name: task $SLURM_ARRAY_TASK_ID of {tasks} (job ${{SLURM_ARRAY_JOB_ID}}_$SLURM_ARRAY_TASK_ID)," \
+    "attempt $((${{SLURM_RESTART_COUNT:-0}} + 1)), on $(hostname) at $(date '+%Y-%m-%d %H:%M:%S')"
 # One summary job per array: the first task to start makes this folder, which no other task
 # (nor this one, requeued) can make again.
 marker="$logs/summary-after-$SLURM_ARRAY_JOB_ID"
@@ -160,8 +159,14 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_quote_in_a_path_survives_the_shell() {
-        assert_eq!(quoted(Path::new("/a/it's")), r"'/a/it'\''s'");
+    fn a_path_quoted_reaches_a_program_through_the_shell_as_it_was() {
+        for path in ["/a/it's", "/a b/$HOME/`x`/\"q\"/*", "/plain"] {
+            let printed = std::process::Command::new("sh")
+                .arg("-c")
+                .arg(format!("printf %s {}", quoted(Path::new(path))))
+                .output();
+            assert_eq!(String::from_utf8_lossy(&printed.unwrap().stdout), path);
+        }
     }
 
     #[test]
