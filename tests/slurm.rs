@@ -24,7 +24,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{binary, read_study, serve_study, study_files};
+use common::{binary, paper_study, read_study, serve_study, study_files};
 
 /// How long any one wait on the cluster may take before the test fails.
 const PATIENCE: Duration = Duration::from_secs(240);
@@ -285,20 +285,6 @@ impl Drop for Cluster {
     }
 }
 
-/// The study: the paper case to 450 s (its first slips, about 1.5 s a member), two sweep rows
-/// of three ensemble members.
-fn small_study(dir: &Path) -> PathBuf {
-    let path = dir.join("small.toml");
-    let text = format!(
-        "case = \"{}/cases/paper_triangular.toml\"\n[set]\n\"time.t_end\" = 450.0\n\"time.integrator\" = \"wilson\"\n\
-         [ensemble]\nkey = \"friction.structure0\"\nstep = -1.0e-9\nmembers = 3\n\
-         [sweep]\n\"scene.normal_traction.left\" = [300.0, 350.0]\n",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
 /// Runs `slipfront ARGS`, which must succeed; its standard output.
 fn slipfront(args: &[&str]) -> String {
     let out = binary().args(args).output().unwrap();
@@ -377,7 +363,8 @@ fn a_study_on_slurm_gives_the_local_files_through_a_cancelled_and_a_requeued_tas
     let dir = std::env::temp_dir().join(format!("slipfront-slurm-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    let study = small_study(&dir);
+    // The paper case to 450 s, 2 sweep rows of 3 members: about 1.5 s a member.
+    let study = paper_study(&dir, 3, "");
     let local = dir.join("local");
     slipfront(&["study", study.to_str().unwrap(), "--out-dir", local.to_str().unwrap(), "--jobs", "2", "--quiet"]);
     let expected = study_files(&local.join("small"));

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{read_study, serve_study, study_files};
+use common::{paper_study, read_study, serve_study, study_files};
 
 fn scratch(tag: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("slipfront-study-{tag}-{}", std::process::id()));
@@ -18,17 +18,9 @@ fn scratch(tag: &str) -> PathBuf {
     dir
 }
 
-/// A study of the paper case to 450 s (its first slips): 2 sweep rows × 2 ensemble members.
+/// The paper case to 450 s, 2 sweep rows × 2 ensemble members ([`paper_study`]).
 fn small_study(dir: &Path, extra: &str) -> PathBuf {
-    let path = dir.join("small.toml");
-    let text = format!(
-        "case = \"{}/cases/paper_triangular.toml\"\n[set]\n\"time.t_end\" = 450.0\n\"time.integrator\" = \"wilson\"\n\
-         [ensemble]\nkey = \"friction.structure0\"\nstep = -1.0e-9\nmembers = 2\n\
-         [sweep]\n\"scene.normal_traction.left\" = [300.0, 350.0]\n{extra}",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    std::fs::write(&path, text).unwrap();
-    path
+    paper_study(dir, 2, extra)
 }
 
 fn study(args: &[&str]) -> (i32, String) {
