@@ -105,7 +105,7 @@ impl Cluster {
         // munge's own key, readable by root alone, and its socket in a folder all may enter.
         let mut key = [0u8; 128];
         std::fs::File::open("/dev/urandom").and_then(|mut f| f.read_exact(&mut key)).map_err(|e| e.to_string())?;
-        std::fs::write(dir.join("munge/munge.key"), &key).map_err(|e| e.to_string())?;
+        std::fs::write(dir.join("munge/munge.key"), key).map_err(|e| e.to_string())?;
         std::fs::set_permissions(dir.join("munge/munge.key"), std::fs::Permissions::from_mode(0o600))
             .map_err(|e| e.to_string())?;
         std::fs::set_permissions(dir.join("munge"), std::fs::Permissions::from_mode(0o755))
