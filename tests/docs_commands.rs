@@ -165,20 +165,40 @@ const LISTED: &[(&str, &[(&str, How)])] = &[
             ),
             ("slipfront study STUDY.toml --resume", Mirror("slipfront study cases/studies/STUDY.toml --resume")),
             ("slipfront study STUDY.toml --shard 3/8", Mirror("slipfront study cases/studies/STUDY.toml --shard 3/8")),
+            ("slipfront study STUDY.toml --summarize", Mirror("slipfront study cases/studies/STUDY.toml --summarize")),
             (
-                "slipfront study cases/studies/paper_ensemble.toml --jobs 4 --shard ${SLURM_ARRAY_TASK_ID}/16 --out-dir /scratch/$USER/runs",
+                "slipfront study cases/studies/paper_ensemble.toml --slurm-array 8 --jobs 4 --out-dir /scratch/$USER/runs",
                 Mirror(
-                    "export SLURM_ARRAY_TASK_ID=16; slipfront study cases/studies/paper_ensemble.toml --jobs 4 --shard ${SLURM_ARRAY_TASK_ID}/16 --out-dir slurm/runs",
+                    "slipfront study cases/studies/paper_ensemble.toml --slurm-array 8 --jobs 4 --out-dir slurm/runs",
                 ),
             ),
             (
-                "parallel -j 8 slipfront study cases/studies/paper_ensemble.toml --jobs 1 --shard {}/8 --quiet ::: $(seq 8)",
-                Mirror("slipfront study cases/studies/paper_ensemble.toml --jobs 1 --shard 8/8 --quiet"),
+                "sbatch --partition=compute --time=00:10:00 /scratch/$USER/runs/paper_ensemble/slurm/paper_ensemble.sbatch",
+                // Task 8 of the array outside Slurm, where no job can be submitted (tests/slurm.rs
+                // submits such a script to a Slurm cluster it brings up).
+                Mirror(
+                    "SLURM_CONF=/dev/null SLURM_ARRAY_TASK_ID=8 SLURM_ARRAY_JOB_ID=0 bash slurm/runs/paper_ensemble/slurm/paper_ensemble.sbatch",
+                ),
+            ),
+            (
+                "for i in 1 2 3 4; do ssh node$i \"cd $PWD && slipfront study cases/studies/paper_ensemble.toml --shard $i/4 --resume --quiet\" & done; wait",
+                Mirror(
+                    "for i in 1 2 3 4; do slipfront study cases/studies/paper_ensemble.toml --shard $i/4 --resume --quiet & done; wait",
+                ),
+            ),
+            ("slipfront study cases/studies/paper_ensemble.toml --summarize", Run),
+            (
+                "parallel -j 8 slipfront study cases/studies/paper_ensemble.toml --jobs 1 --shard {}/8 --resume --quiet ::: $(seq 8)",
+                Mirror("slipfront study cases/studies/paper_ensemble.toml --jobs 1 --shard 8/8 --resume --quiet"),
             ),
             ("slipfront study cases/studies/paper_ensemble.toml --resume", Run),
             (
                 "rerun server -d study=recordings/paper_ensemble",
-                Skip("serves until stopped; the Python recipe below starts the same dataset server and queries it"),
+                Skip("serves until stopped; tests/study.rs serves a study so and queries it from another process"),
+            ),
+            (
+                "python: # A colleague's Python, anywhere the server can be reached.",
+                Skip("needs the server above; tests/study.rs runs this query (tests/python/read_study.py) against one"),
             ),
             ("python: import rerun as rr", Python),
         ],

@@ -1,10 +1,15 @@
 //! `slipfront study`: bad study files refused before anything runs, shards that add up to the
-//! whole study, a killed study resumed to the same files, and the output folder read by the
-//! official Rerun SDK as one dataset.
+//! whole study (the tables of a part naming the members missing), a killed study resumed to the
+//! same files, and the output folder read by the official Rerun SDK as one dataset, in the
+//! test's own process and served by `rerun server` to another.
+
+mod common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
+
+use common::{paper_study, read_study, serve_study, study_files};
 
 fn scratch(tag: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("slipfront-study-{tag}-{}", std::process::id()));
@@ -13,49 +18,15 @@ fn scratch(tag: &str) -> PathBuf {
     dir
 }
 
-/// A study of the paper case to 450 s (its first slips): 2 sweep rows × 2 ensemble members.
+/// The paper case to 450 s, 2 sweep rows × 2 ensemble members ([`paper_study`]).
 fn small_study(dir: &Path, extra: &str) -> PathBuf {
-    let path = dir.join("small.toml");
-    let text = format!(
-        "case = \"{}/cases/paper_triangular.toml\"\n[set]\n\"time.t_end\" = 450.0\n\"time.integrator\" = \"wilson\"\n\
-         [ensemble]\nkey = \"friction.structure0\"\nstep = -1.0e-9\nmembers = 2\n\
-         [sweep]\n\"scene.normal_traction.left\" = [300.0, 350.0]\n{extra}",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    std::fs::write(&path, text).unwrap();
-    path
+    paper_study(dir, 2, extra)
 }
 
 fn study(args: &[&str]) -> (i32, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_slipfront")).arg("study").args(args).output().unwrap();
     let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     (out.status.code().unwrap_or(-1), text)
-}
-
-/// Every file of a study folder but the recordings, by name, with its bytes; of the members'
-/// records, all but their digests of the recordings (Rerun's chunk ids are random) and their
-/// own digest.
-fn outputs(dir: &Path) -> Vec<(String, Vec<u8>)> {
-    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_none_or(|e| e != "rrd"))
-        .map(|p| {
-            let name = p.file_name().unwrap().to_string_lossy().into_owned();
-            let mut bytes = std::fs::read(&p).unwrap();
-            if name.ends_with(".done.toml") {
-                let mut record: toml::Table = std::str::from_utf8(&bytes).unwrap().parse().unwrap();
-                record.remove("digest");
-                if let Some(toml::Value::Array(outputs)) = record.get_mut("outputs") {
-                    outputs.retain(|o| !o[0].as_str().unwrap().ends_with(".rrd"));
-                }
-                bytes = record.to_string().into_bytes();
-            }
-            (name, bytes)
-        })
-        .collect();
-    files.sort();
-    files
 }
 
 #[test]
@@ -109,13 +80,25 @@ fn shards_add_up_to_the_whole_study_and_a_killed_study_resumes_to_the_same_files
     assert_eq!(code, 0, "{text}");
     // Two shards into one folder, one after the other as two machines would.
     let sharded = dir.join("sharded");
-    for shard in ["1/2", "2/2"] {
-        let (code, text) = study(&[path, "--out-dir", sharded.to_str().unwrap(), "--shard", shard, "--quiet"]);
-        assert_eq!(code, 0, "{text}");
+    let out = sharded.to_str().unwrap();
+    let (code, text) = study(&[path, "--out-dir", out, "--shard", "1/2", "--quiet"]);
+    assert_eq!(code, 0, "{text}");
+    // The tables of half a study name the members missing, and say so by their exit.
+    let (code, text) = study(&[path, "--out-dir", out, "--summarize"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("2 of 4 finished, 0 failed, 2 missing") && text.contains("2 members missing"), "{text}");
+    let summary = std::fs::read_to_string(sharded.join("small/summary.md")).unwrap();
+    for member in ["member-0001", "member-0003"] {
+        assert!(summary.contains(&format!("- {member} (")), "{summary}");
     }
-    let expected = outputs(&whole.join("small"));
+    assert!(summary.contains("## Missing members") && !summary.contains("- member-0000 ("), "{summary}");
+    let (code, text) = study(&[path, "--out-dir", out, "--shard", "2/2", "--quiet"]);
+    assert_eq!(code, 0, "{text}");
+    let (code, text) = study(&[path, "--out-dir", out, "--summarize", "--quiet"]);
+    assert_eq!(code, 0, "{text}");
+    let expected = study_files(&whole.join("small"));
     assert_eq!(expected.len(), 4 * 3 + 3, "4 members × (events, ruptures, done) + events.csv, summary.md, summary.png");
-    assert_eq!(outputs(&sharded.join("small")), expected, "sharded and whole studies differ");
+    assert_eq!(study_files(&sharded.join("small")), expected, "sharded and whole studies differ");
     let summary = String::from_utf8(expected.iter().find(|(n, _)| n == "summary.md").unwrap().1.clone()).unwrap();
     assert!(
         summary.contains("4 of 4 members finished, 0 failed, 0 not run or not verified (2 rows of 2 members)"),
@@ -142,7 +125,7 @@ fn shards_add_up_to_the_whole_study_and_a_killed_study_resumes_to_the_same_files
     assert_eq!(code, 0, "{text}");
     assert!(text.contains("verified and kept"), "{text}");
     let after: Vec<(String, Vec<u8>)> =
-        outputs(&resumed.join("small")).into_iter().filter(|(n, _)| !n.starts_with('.')).collect();
+        study_files(&resumed.join("small")).into_iter().filter(|(n, _)| !n.starts_with('.')).collect();
     assert_eq!(after, expected, "the resumed study differs from the uninterrupted one");
 }
 
@@ -153,18 +136,7 @@ fn the_official_sdk_reads_the_study_folder_as_one_dataset() {
     let out = dir.join("out");
     let (code, text) = study(&[path.to_str().unwrap(), "--out-dir", out.to_str().unwrap(), "--quiet"]);
     assert_eq!(code, 0, "{text}");
-    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/python/read_study.py");
-    let output = match Command::new("python3").arg(script).arg(out.join("small")).output() {
-        Ok(o) if o.status.code() == Some(3) => {
-            assert!(std::env::var_os("SLIPFRONT_REQUIRE_OFFICIAL_TOOLS").is_none(), "the Rerun SDK is required");
-            return eprintln!("SKIPPED: the official Rerun Python SDK is not installed");
-        }
-        Ok(o) => {
-            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-            String::from_utf8(o.stdout).unwrap()
-        }
-        Err(_) => return eprintln!("SKIPPED: python3"),
-    };
+    let Some(output) = read_study(out.join("small").to_str().unwrap()) else { return };
     // One segment per member, its parameters in the segment table.
     let segments: Vec<&str> = output.lines().filter(|l| l.starts_with("segment,")).collect();
     assert_eq!(segments.len(), 4, "{output}");
@@ -178,6 +150,9 @@ fn the_official_sdk_reads_the_study_folder_as_one_dataset() {
     // One query across every member: the friction force's last value in each.
     let finals: Vec<&str> = output.lines().filter(|l| l.starts_with("final,")).collect();
     assert_eq!(finals.len(), 4, "{output}");
+    // A colleague's query of the folder served by `rerun server`, from another process: the same.
+    let Some(served) = serve_study(&out.join("small")) else { return };
+    assert_eq!(served, output, "served and read in process, the study differs");
 }
 
 #[test]

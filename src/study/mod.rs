@@ -7,6 +7,7 @@ pub mod figures;
 pub mod record;
 pub mod replay;
 pub mod runner;
+pub mod slurm;
 pub mod spec;
 pub mod stop;
 pub mod summary;

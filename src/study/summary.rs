@@ -7,7 +7,8 @@
 //! Only what verifies counts ([`crate::study::record`]): a member whose record or outputs do not
 //! verify, or whose record is of other parameters, is not finished. Counts and verdicts are read
 //! from each member's own catalogs, never from its record. Failed members are counted apart and
-//! left out of every statistic.
+//! left out of every statistic; members missing (never run, interrupted, or not verifying) are
+//! named with why, so that a study summarised with members missing says so.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -37,11 +38,13 @@ struct Finished<'s> {
     verdict: Option<[bool; 3]>,
 }
 
-/// How many of a study's members are finished and failed, as [`write`] found them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// How many of a study's members are finished and failed, as [`write`] found them, and the
+/// members missing with why.
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Counts {
     pub finished: usize,
     pub failed: usize,
+    pub missing: Vec<String>,
 }
 
 /// Writes `events.csv`, `summary.md` and `summary.png` into `dir` from the members that verify
@@ -49,17 +52,24 @@ pub struct Counts {
 pub fn write(study: &Study, dir: &Path) -> Result<Counts, String> {
     let mut finished = Vec::new();
     let mut failed = Vec::new();
+    let mut missing = Vec::new();
     for member in &study.members {
         match standing(dir, study, member) {
-            Standing::Finished(record) => finished.extend(read_catalogs(dir, member, record)),
+            Standing::Finished(record) => match read_catalogs(dir, member, record) {
+                Some(member) => finished.push(member),
+                None => missing.push((member, "its catalogs cannot be read".to_string())),
+            },
             Standing::Failed(record) => failed.push((member, record)),
-            Standing::NotRun | Standing::Stale | Standing::Unverified(_) => {}
+            Standing::NotRun => missing.push((member, "no record: not run, or interrupted".to_string())),
+            Standing::Stale => missing.push((member, "a record of other parameters than the study file's".into())),
+            Standing::Unverified(why) => missing.push((member, format!("does not verify: {why}"))),
         }
     }
     write_atomically(&dir.join("events.csv"), &events_table(study, &finished))?;
-    write_atomically(&dir.join("summary.md"), &summary(study, &finished, &failed))?;
+    write_atomically(&dir.join("summary.md"), &summary(study, &finished, &failed, &missing))?;
     verdict_figure(study, &dir.join("summary.png"), &finished)?;
-    Ok(Counts { finished: finished.len(), failed: failed.len() })
+    let missing = missing.iter().map(|(member, why)| format!("{}: {why}", member.name)).collect();
+    Ok(Counts { finished: finished.len(), failed: failed.len(), missing })
 }
 
 /// The member's catalogs, read and measured; `None` if they cannot be (they verified, so only
@@ -169,8 +179,14 @@ fn mean_and_error(values: &[f64]) -> (f64, f64) {
 
 /// `summary.md`: per sweep row, the members finished and failed, the finished members' slips
 /// per segment and event counts (mean ± standard error), and the paper's observations as
-/// proportions with a 95 % interval; then every failed member with its error.
-fn summary(study: &Study, finished: &[Finished<'_>], failed: &[(&Member, MemberRecord)]) -> String {
+/// proportions with a 95 % interval; then every failed member with its error, and every member
+/// missing with why.
+fn summary(
+    study: &Study,
+    finished: &[Finished<'_>],
+    failed: &[(&Member, MemberRecord)],
+    missing: &[(&Member, String)],
+) -> String {
     let total = study.members.len();
     let mut out = format!(
         "# Study {}\n\n{} of {total} members finished, {} failed, {} not run or not verified ({} of {}). \
@@ -178,7 +194,7 @@ fn summary(study: &Study, finished: &[Finished<'_>], failed: &[(&Member, MemberR
         study.name,
         finished.len(),
         failed.len(),
-        total - finished.len() - failed.len(),
+        missing.len(),
         plural(study.rows, "row"),
         members(study.members_per_row),
         study.case_path.display()
@@ -201,17 +217,29 @@ fn summary(study: &Study, finished: &[Finished<'_>], failed: &[(&Member, MemberR
         out.push_str("## Failed members\n\n");
         for (member, record) in failed {
             let error = record.error.as_deref().unwrap_or("no error given").replace('\n', " ");
-            let parameters: Vec<(String, String)> =
-                member.parameters.iter().map(|(k, v)| (k.clone(), v.to_string())).collect();
-            let _ = writeln!(out, "- {} ({}): {error}", member.name, describe(&parameters));
+            let _ = writeln!(out, "- {} ({}): {error}", member.name, describe(&member_parameters(member)));
+        }
+        out.push('\n');
+    }
+    if !missing.is_empty() {
+        out.push_str(
+            "## Missing members\n\nNot in any statistic above; `--resume` (or the shard's task run again) runs them.\n\n",
+        );
+        for (member, why) in missing {
+            let _ = writeln!(out, "- {} ({}): {why}", member.name, describe(&member_parameters(member)));
         }
         out.push('\n');
     }
     out
 }
 
+/// A member's varying keys and their values as text.
+fn member_parameters(member: &Member) -> Vec<(String, String)> {
+    member.parameters.iter().map(|(k, v)| (k.clone(), v.to_string())).collect()
+}
+
 /// `1 row`, `2 rows`.
-fn plural(n: usize, word: &str) -> String {
+pub fn plural(n: usize, word: &str) -> String {
     if n == 1 { format!("1 {word}") } else { format!("{n} {word}s") }
 }
 

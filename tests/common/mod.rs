@@ -152,3 +152,92 @@ pub fn section<'a>(markdown: &'a str, heading: &str) -> &'a str {
     let end = rest[3..].find("\n## ").map_or(rest.len(), |e| e + 4);
     &rest[..end]
 }
+
+/// Every file of a study folder but the recordings (and the logs' subfolder, and files being
+/// written), by name, with its bytes; of the members' records, all but their digests of the
+/// recordings (Rerun's chunk ids are random) and their own digest.
+pub fn study_files(dir: &std::path::Path) -> Vec<(String, Vec<u8>)> {
+    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_file() && p.extension().is_none_or(|e| e != "rrd"))
+        .filter(|p| !p.file_name().unwrap().to_string_lossy().starts_with('.'))
+        .map(|p| {
+            let name = p.file_name().unwrap().to_string_lossy().into_owned();
+            let mut bytes = std::fs::read(&p).unwrap();
+            if name.ends_with(".done.toml") {
+                let mut record: toml::Table = std::str::from_utf8(&bytes).unwrap().parse().unwrap();
+                record.remove("digest");
+                if let Some(toml::Value::Array(outputs)) = record.get_mut("outputs") {
+                    outputs.retain(|o| !o[0].as_str().unwrap().ends_with(".rrd"));
+                }
+                bytes = record.to_string().into_bytes();
+            }
+            (name, bytes)
+        })
+        .collect();
+    files.sort();
+    files
+}
+
+/// What `tests/python/read_study.py TARGET` prints (a study folder, or the URL of a server
+/// serving one as `study`): each member's parameters and last friction force, through the
+/// official Rerun SDK; `None` where the SDK or Python is missing ([`skip_missing`]).
+pub fn read_study(target: &str) -> Option<String> {
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/python/read_study.py");
+    match std::process::Command::new("python3").arg(script).arg(target).output() {
+        Ok(o) if o.status.code() == Some(3) => skip_missing("the official Rerun Python SDK"),
+        Ok(o) => {
+            assert!(o.status.success(), "read_study.py {target}: {}", String::from_utf8_lossy(&o.stderr));
+            Some(String::from_utf8(o.stdout).unwrap())
+        }
+        Err(_) => skip_missing("python3"),
+    }
+}
+
+/// What [`read_study`] prints when it queries `folder` served by the `rerun server` command
+/// (`rerun server -d study=FOLDER`, the binary the Python SDK ships, run as its own process so
+/// that its process id is the server's) on a free local port, as a colleague would; the server
+/// is stopped by its process id afterwards.
+pub fn serve_study(folder: &std::path::Path) -> Option<String> {
+    let locate = "import os, rerun_cli; print(os.path.join(os.path.dirname(rerun_cli.__file__), 'rerun'))";
+    let rerun = match std::process::Command::new("python3").args(["-c", locate]).output() {
+        Ok(o) if o.status.success() => String::from_utf8(o.stdout).unwrap().trim().to_string(),
+        _ => return skip_missing("the rerun CLI of the Python SDK"),
+    };
+    let port = std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
+    let dataset = format!("study={}", folder.display());
+    let server = std::process::Command::new(&rerun)
+        .args(["server", "--host", "127.0.0.1", "--port", &port.to_string(), "-d", &dataset])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap_or_else(|e| panic!("{rerun}: {e}"));
+    let _server = Stopped(server);
+    read_study(&format!("rerun+http://127.0.0.1:{port}"))
+}
+
+/// A child process killed (by its process id) and waited for when dropped, a failed test too.
+pub struct Stopped(pub std::process::Child);
+
+impl Drop for Stopped {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+/// `small.toml` in `dir`: a study of the paper case to 450 s (its first slips, about 1.5 s a
+/// member with Wilson's method), 2 sweep rows (`scene.normal_traction.left` 300 and 350 Pa) of
+/// `members` ensemble members 1e-9 apart in initial `1/R*`, and `extra` lines.
+pub fn paper_study(dir: &std::path::Path, members: usize, extra: &str) -> std::path::PathBuf {
+    let path = dir.join("small.toml");
+    let text = format!(
+        "case = \"{}/cases/paper_triangular.toml\"\n[set]\n\"time.t_end\" = 450.0\n\"time.integrator\" = \"wilson\"\n\
+         [ensemble]\nkey = \"friction.structure0\"\nstep = -1.0e-9\nmembers = {members}\n\
+         [sweep]\n\"scene.normal_traction.left\" = [300.0, 350.0]\n{extra}",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    std::fs::write(&path, text).unwrap();
+    path
+}
