@@ -104,29 +104,12 @@ fn the_block_rotated_gives_the_same_onsets_and_local_tractions() {
             println!("{sets:?}: onset {k} at {} s, rotated {} s, relative difference {relative:.1e}", x.1, y.1);
             assert!(relative < onset_bound, "{sets:?}: onset {k}: {} against {} s", y.1, x.1);
         }
-        let (a, b) = (common::tractions(&block, 50.0), tractions(&rotated, 50.0));
+        let (a, b) = (common::tractions(&block, 50.0), common::tractions(&rotated, 50.0));
         let strength = 0.4 * 350.0;
         let worst = common::max_difference(&a[..8], &b[..8]);
         println!("{sets:?}: largest traction difference up to 400 s: {worst:.1e} Pa");
         assert!(worst < 1e-9 * strength, "{sets:?}: tractions differ by {worst} Pa before the first slips");
     }
-}
-
-/// Mean tangential traction of each segment every `every` seconds (any scene).
-fn tractions(case: &Case, every: f64) -> Vec<Vec<f64>> {
-    let mut scene = scene::build(case).unwrap();
-    let adaptive = case.time.adaptive_tolerance().is_some();
-    let samples = (case.time.t_end / every).round() as usize;
-    let mut out = Vec::new();
-    for k in 1..=samples {
-        let target = k as f64 * every;
-        while scene.time() < target - 1e-9 {
-            let left = target - scene.time();
-            scene.advance(if adaptive { left } else { case.time.dt.min(left) }).unwrap();
-        }
-        out.push(scene.frame(Needs::default(), 0.0).segments.iter().map(|s| s.traction_t).collect());
-    }
-    out
 }
 
 /// The friction force per unit base displacement once a stuck block's transients have decayed

@@ -3,10 +3,9 @@
 // Each test file compiles its own copy and uses only some of them.
 #![allow(dead_code)]
 
-use slipfront::case::{self, Case, SceneSpec};
+use slipfront::case::{self, Case};
 use slipfront::run::{LoopOptions, Outcome, run};
-use slipfront::scene::block::BlockScene;
-use slipfront::scene::{self, Scene};
+use slipfront::scene;
 
 /// The release binary under test.
 pub fn binary() -> std::process::Command {
@@ -26,20 +25,19 @@ pub fn load(name: &str, overrides: &[&str]) -> Case {
 }
 
 /// Mean tangential traction of each segment at `t = every, 2 every, …, t_end`, stepping the
-/// scene to land on each instant.
+/// scene (any body) to land on each instant.
 pub fn tractions(case: &Case, every: f64) -> Vec<Vec<f64>> {
-    let SceneSpec::Block(spec) = &case.scene else { panic!("a block case") };
-    let mut block = BlockScene::new(case, spec).unwrap();
+    let mut scene = scene::build(case).unwrap();
     let adaptive = case.time.adaptive_tolerance().is_some();
     let samples = (case.time.t_end / every).round() as usize;
     let mut out = Vec::new();
     for k in 1..=samples {
         let target = k as f64 * every;
-        while block.time() < target - 1e-9 {
-            let left = target - block.time();
-            block.advance(if adaptive { left } else { case.time.dt.min(left) }).unwrap();
+        while scene.time() < target - 1e-9 {
+            let left = target - scene.time();
+            scene.advance(if adaptive { left } else { case.time.dt.min(left) }).unwrap();
         }
-        let frame = block.frame(Default::default(), 0.0);
+        let frame = scene.frame(Default::default(), 0.0);
         out.push(frame.segments.iter().map(|s| s.traction_t).collect());
     }
     out
