@@ -100,6 +100,10 @@ pub struct Layout {
     /// Runge–Kutta integrator's `Λ`) rather than means `Δp/Δt` over the step that led to it.
     #[serde(default)]
     pub instantaneous_slip_rate: bool,
+    /// Whether the body is a ring about the y axis (x the radius): its contact forces are
+    /// totals around the circumference, in N rather than N per unit thickness.
+    #[serde(default)]
+    pub axisymmetric: bool,
 }
 
 /// One contact of a body.
@@ -114,6 +118,12 @@ pub struct ContactInfo {
 }
 
 impl Layout {
+    /// Unit of the total friction force: N around a ring, N/m per unit thickness of a plane
+    /// body, Pa per unit area of a point or spring block.
+    pub fn force_unit(&self) -> &'static str {
+        if self.axisymmetric { "N" } else { self.kind.force_unit() }
+    }
+
     /// The contacts, with the segment and node ranges each holds: [`Self::contacts`], or one
     /// contact holding everything.
     pub fn contact_ranges(&self) -> Vec<(String, std::ops::Range<usize>, std::ops::Range<usize>)> {

@@ -11,6 +11,7 @@ use serde::Deserialize;
 use crate::case::profile::ProfileSpec;
 use crate::dynamics::{MainBody, Motion};
 use crate::fem::curve::{CurvePoint, segments};
+use crate::fem::equilibrium::{Equilibrium, under_gravity};
 use crate::fem::{
     BodyDefinition, Constraint, ContactDefinition, Material, Members, Mesh, PlaneStrain, Traction, TractionLoad,
 };
@@ -31,6 +32,13 @@ pub struct MeshSpec {
     pub boundaries: Vec<BoundarySpec>,
     /// `[[scene.contacts]]`: the frictional contacts (`S_c`).
     pub contacts: Vec<ContactSpec>,
+    /// The mesh is the half-plane `r = x ≥ 0`, `z = y` of a body of revolution about the y
+    /// axis ([`crate::fem::axisymmetric`]); forces are then in N. Default false: plane strain.
+    #[serde(default)]
+    pub axisymmetric: bool,
+    /// The acceleration of gravity `[gx, gy]` (m/s²): the body starts in static equilibrium
+    /// under its weight with its contacts stuck ([`crate::fem::equilibrium`]). Default none.
+    pub gravity: Option<[f64; 2]>,
     /// The mesh and what the case's names resolve to, once loaded ([`MeshSpec::load`]).
     #[serde(skip)]
     pub loaded: Option<Arc<LoadedMesh>>,
@@ -149,6 +157,8 @@ pub struct LoadedMesh {
     /// Each contact's chain, and its friction constants.
     pub contact_chains: Vec<Vec<usize>>,
     pub contact_params: Vec<FrictionParams>,
+    /// The static equilibrium under `gravity`, every contact stuck; `None` without gravity.
+    pub equilibrium: Option<Equilibrium>,
 }
 
 /// Left out of a case's `Debug` form, which names the run: the file's digest stands for the
@@ -364,6 +374,11 @@ impl MeshSpec {
             contact.check(&mut inner);
             c.absorb(inner);
         }
+        if let Some(g) = self.gravity {
+            for (i, v) in g.iter().enumerate() {
+                c.finite(&format!("gravity[{i}]"), *v);
+            }
+        }
     }
 
     /// The mesh as loaded; panics before [`Self::load`].
@@ -378,6 +393,9 @@ impl MeshSpec {
         let path = dir.join(&self.file);
         let (mesh, digest) = crate::fem::gmsh::read_with_digest(&path).map_err(|e| e.to_string())?;
         let mut c = Checker::new("scene");
+        if self.axisymmetric {
+            check_half_plane(&mesh, &mut c);
+        }
         let cell_material = self.cell_materials(&mesh, &mut c);
         let mut boundary_nodes = Vec::new();
         let mut boundary_chains = Vec::new();
@@ -406,13 +424,58 @@ impl MeshSpec {
             boundary_chains: boundary_chains.into_iter().collect(),
             contact_chains,
             contact_params: contact_params.into_iter().map(|p| p.expect("checked above")).collect(),
+            equilibrium: None,
         };
+        let mut loaded = loaded;
         self.check_contacts(&loaded, &mut c);
         if let Err(e) = crate::fem::assembly::check(&self.definition(&loaded)) {
             c.fail("boundaries", "[...]", e.0);
         }
+        if c.violations.is_empty() && self.gravity.is_some() {
+            loaded.equilibrium = self.settle(&loaded, &mut c);
+        }
         self.loaded = Some(Arc::new(loaded));
         Ok(c.violations)
+    }
+
+    /// The static equilibrium under gravity ([`crate::fem::equilibrium`]), refused where the
+    /// body is not held or where a contact point would have to carry more than its static
+    /// strength `μ_k (1/R*₀) f_n` to start stuck.
+    fn settle(&self, loaded: &LoadedMesh, c: &mut Checker<'_>) -> Option<Equilibrium> {
+        let g = self.gravity.unwrap_or_default();
+        let value = format!("[{}, {}]", shortest(g[0]), shortest(g[1]));
+        let assembled = match crate::fem::assemble(&self.definition(loaded)) {
+            Ok(assembled) => assembled,
+            Err(e) => {
+                c.fail("boundaries", "[...]", e.0);
+                return None;
+            }
+        };
+        let equilibrium = match under_gravity(&assembled)? {
+            Ok(equilibrium) => equilibrium,
+            Err(e) => {
+                c.fail("gravity", value.as_str(), e);
+                return None;
+            }
+        };
+        let contact = &assembled.contact;
+        for (k, point) in contact.points.iter().enumerate() {
+            let (params, f_n) = (contact.params(k), contact.traction_n[k]);
+            let strength = params.mu_k * params.initial_structure() * f_n;
+            let f_t = equilibrium.traction_t[k] + params.f0 * point.loading_direction;
+            if f_n > 0.0 && f_t.abs() > strength {
+                let name = &self.contacts[point.surface].group;
+                let rule = format!(
+                    "m/s² loads contact {name:?} beyond its static strength before anything moves: the body at                      rest on it needs |f_t| = {} Pa at a contact point where mu_k (1/R*) f_n = {} Pa (f_n = {} Pa);                      raise the contact's normal traction or its friction, or hold the body by a boundary",
+                    shortest(f_t.abs()),
+                    shortest(strength),
+                    shortest(f_n)
+                );
+                c.fail("gravity", value.as_str(), rule);
+                return None;
+            }
+        }
+        Some(equilibrium)
     }
 
     /// Each cell's material: every cell in exactly one material group.
@@ -536,6 +599,8 @@ impl MeshSpec {
             constraints: constraints.collect(),
             tractions: tractions.collect(),
             contacts: contacts.collect(),
+            axisymmetric: self.axisymmetric,
+            gravity: self.gravity,
         }
     }
 
@@ -557,6 +622,22 @@ impl MeshSpec {
             let segments: usize = l.contact_chains.iter().map(|c| c.len().saturating_sub(1)).sum();
             (l.contact_chains.iter().map(Vec::len).sum(), segments)
         })
+    }
+}
+
+/// An axisymmetric mesh lies in the half-plane `r = x ≥ 0`: a node at `x < 0` would put the
+/// body across its own axis.
+fn check_half_plane(mesh: &Mesh, c: &mut Checker<'_>) {
+    if let Some(i) = (0..mesh.nodes.len()).find(|&i| mesh.nodes[i][0] < 0.0) {
+        let [x, y] = mesh.nodes[i];
+        let rule = format!(
+            "needs every node at r = x >= 0: the mesh crosses the axis x = 0 ({} at ({}, {})); an axisymmetric \
+             body is meshed in the half-plane x >= 0, its axis along y",
+            mesh.node_label(i),
+            shortest(x),
+            shortest(y)
+        );
+        c.fail("axisymmetric", "true", rule);
     }
 }
 

@@ -226,6 +226,17 @@ fn scene_spec<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Scene
         }
         None => return Err(D::Error::missing_field("kind")),
     };
+    for key in ["gravity", "axisymmetric"] {
+        if kind != "mesh" && table.contains_key(key) {
+            let why = match kind.as_str() {
+                "point" | "spring_block" => "has no body to weigh or revolve",
+                _ => "is the paper's plane-strain block, weightless (pose it as a mesh, as cases/paper_mesh.toml does)",
+            };
+            return Err(D::Error::custom(format!(
+                "{NESTED_KEY}{key}: applies to a body drawn as a mesh (kind = \"mesh\"); a {kind} scene {why}"
+            )));
+        }
+    }
     let tracked = |table: toml::Table| {
         fn read<T: serde::de::DeserializeOwned>(table: toml::Table) -> Result<T, String> {
             serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {

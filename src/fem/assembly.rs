@@ -12,9 +12,12 @@ use crate::dynamics::contact::padded;
 use crate::dynamics::{
     ContactBoundary, ContactPoint, ContactSurface, LinearBody, Load, LoadHistory, MainBody, Motion, Projection,
 };
+use crate::fem::axisymmetric;
 use crate::fem::body_mesh::{Cell, Mesh};
 use crate::fem::curve::{CurvePoint, Segment, segments};
-use crate::fem::element::{PlaneStrain, lumped_mass, signed_double_area, stiffness, triangle_stiffness};
+use crate::fem::element::{
+    PlaneStrain, lumped_mass, shape_integrals, signed_double_area, stiffness, triangle_stiffness,
+};
 use crate::friction::FrictionParams;
 use crate::linalg::sparse::SymmetricMatrix;
 
@@ -72,7 +75,17 @@ pub struct BodyDefinition<'a> {
     pub constraints: Vec<Constraint>,
     pub tractions: Vec<TractionLoad>,
     pub contacts: Vec<ContactDefinition<'a>>,
+    /// Whether the mesh is the half-plane `r = x ≥ 0`, `z = y` of a body of revolution
+    /// ([`crate::fem::axisymmetric`]): every integral weighted by `2π r`, `u_r = 0` on the
+    /// axis, forces in N. Otherwise plane strain, per unit thickness.
+    pub axisymmetric: bool,
+    /// The acceleration of gravity `g` (m/s², in the mesh's x and y), whose body force `ρ g`
+    /// the body starts in equilibrium with ([`crate::fem::equilibrium`]); `None`: weightless.
+    pub gravity: Option<[f64; 2]>,
 }
+
+/// The name of the constraint that holds `u_r = 0` on the axis of an axisymmetric body.
+pub const AXIS: &str = "the axis (r = 0)";
 
 /// Where each node's displacement lives: a free unknown, or a prescribed motion.
 #[derive(Debug, Clone, PartialEq)]
@@ -118,6 +131,10 @@ pub struct Assembled {
     /// Each contact's segments, in order along its chain; contact points `2k`, `2k + 1` of
     /// the boundary belong to the `k`-th segment counted over all contacts.
     pub contacts: Vec<Vec<Segment>>,
+    /// The body force of gravity on the free degrees of freedom, `∫ Nᵀ ρ g dV` (N/m per unit
+    /// thickness, N for a ring); `None` without gravity. It is not one of `body.loads`: the
+    /// run starts in equilibrium with it, and the unknowns are measured from there.
+    pub body_force: Option<Vec<f64>>,
 }
 
 /// Why a body cannot be assembled: conflicting boundaries, a moving boundary on a contact.
@@ -133,7 +150,7 @@ impl std::fmt::Display for AssemblyError {
 /// Checks what [`assemble`] refuses without assembling: boundaries that prescribe a node's
 /// motion differently, a contact node that a boundary moves.
 pub fn check(definition: &BodyDefinition) -> Result<(), AssemblyError> {
-    let dofs = number(definition)?;
+    let dofs = number(definition, &constraints(definition))?;
     for contact in &definition.contacts {
         refuse_moving_nodes(contact, &dofs, &definition.mesh.nodes)?;
     }
@@ -143,23 +160,28 @@ pub fn check(definition: &BodyDefinition) -> Result<(), AssemblyError> {
 /// Assembles `definition` (module documentation).
 pub fn assemble(definition: &BodyDefinition) -> Result<Assembled, AssemblyError> {
     let mesh = definition.mesh;
-    let dofs = number(definition)?;
+    let constraints = constraints(definition);
+    let dofs = number(definition, &constraints)?;
     let n = dofs.free;
     let mut mass = vec![0.0; n];
+    let mut body_force = definition.gravity.map(|_| vec![0.0; n]);
     let mut triplets = Vec::with_capacity(64 * mesh.cells.len());
     // -K_fp per prescribed component that moves, summed over the constraint's nodes.
-    let mut moving: Vec<[Option<Vec<f64>>; 2]> = definition
-        .constraints
+    let mut moving: Vec<[Option<Vec<f64>>; 2]> = constraints
         .iter()
         .map(|c| c.components.map(|on| (on && !c.motion.is_at_rest()).then(|| vec![0.0; n])))
         .collect();
     for (cell, material) in mesh.cells.iter().zip(&definition.materials) {
-        let (matrix, node_mass) = element(cell, &mesh.nodes, material);
+        let parts = element(cell, &mesh.nodes, material, definition);
+        let matrix = &parts.stiffness;
         let nodes = cell.nodes();
         let dof_of = |a: usize| &dofs.nodes[nodes[a / 2]][a % 2];
         for a in 0..2 * nodes.len() {
             let NodeDof::Free(row) = *dof_of(a) else { continue };
-            mass[row] += node_mass;
+            mass[row] += parts.mass[a / 2];
+            if let (Some(force), Some(g)) = (&mut body_force, definition.gravity) {
+                force[row] += parts.weight[a / 2] * g[a % 2];
+            }
             for b in 0..2 * nodes.len() {
                 match *dof_of(b) {
                     NodeDof::Free(col) => triplets.push((row, col, matrix[(a, b)])),
@@ -174,7 +196,7 @@ pub fn assemble(definition: &BodyDefinition) -> Result<Assembled, AssemblyError>
     }
     let (contact, contacts) = contact_boundary(definition, &dofs, &mut triplets)?;
     let mut body = LinearBody::new(mass, SymmetricMatrix::from_triplets(n, &triplets));
-    for (constraint, patterns) in definition.constraints.iter().zip(moving) {
+    for (constraint, patterns) in constraints.iter().zip(moving) {
         for (component, pattern) in patterns.into_iter().enumerate() {
             if let Some(pattern) = pattern {
                 let history = LoadHistory::Displacement { motion: constraint.motion.clone(), component };
@@ -183,29 +205,72 @@ pub fn assemble(definition: &BodyDefinition) -> Result<Assembled, AssemblyError>
         }
     }
     for load in &definition.tractions {
-        body.loads.push(traction_load(load, &mesh.nodes, &dofs));
+        body.loads.push(traction_load(load, &mesh.nodes, &dofs, definition.axisymmetric));
     }
-    Ok(Assembled { body, contact, dofs, contacts })
+    Ok(Assembled { body, contact, dofs, contacts, body_force })
 }
 
-/// The element stiffness (degrees of freedom `(x₀, y₀, x₁, y₁, …)`) and the lumped mass per
-/// corner of `cell`.
-fn element(cell: &Cell, coordinates: &[[f64; 2]], material: &Material) -> (nalgebra::DMatrix<f64>, f64) {
+/// The case's constraints, and for an axisymmetric body [`AXIS`]: `u_r = 0` at every node
+/// on `r = 0`, where the hoop strain `u_r/r` would otherwise be unbounded.
+fn constraints(definition: &BodyDefinition) -> Vec<Constraint> {
+    let mut all = definition.constraints.clone();
+    if definition.axisymmetric {
+        let nodes: Vec<usize> =
+            (0..definition.mesh.nodes.len()).filter(|&i| definition.mesh.nodes[i][0] == 0.0).collect();
+        if !nodes.is_empty() {
+            all.push(Constraint { name: AXIS.into(), nodes, components: [true, false], motion: Motion::at_rest() });
+        }
+    }
+    all
+}
+
+/// What one cell gives the assembly.
+struct CellParts {
+    /// Its stiffness, degrees of freedom `(x₀, y₀, x₁, y₁, …)`.
+    stiffness: nalgebra::DMatrix<f64>,
+    /// Each corner's lumped mass.
+    mass: Vec<f64>,
+    /// Each corner's share of the cell's mass for the body force, `∫ N_a ρ dV` (the row sums
+    /// of the consistent mass); empty without gravity.
+    weight: Vec<f64>,
+}
+
+/// The parts of `cell` ([`CellParts`]). A plane-strain cell is computed from its corners
+/// relative to its first, so that its position in the plane does not change the sums; an
+/// axisymmetric one from its absolute radii, which its hoop strain and weight `2π r` need.
+fn element(cell: &Cell, coordinates: &[[f64; 2]], material: &Material, definition: &BodyDefinition) -> CellParts {
     let nodes = cell.nodes();
-    let origin = coordinates[nodes[0]];
+    let origin = if definition.axisymmetric { [0.0, 0.0] } else { coordinates[nodes[0]] };
     let local = |a: usize| Vector2::new(coordinates[nodes[a]][0] - origin[0], coordinates[nodes[a]][1] - origin[1]);
-    match cell {
-        Cell::Quad(_) => {
+    let rho = material.density;
+    let matrix = |size: usize, values: &[f64]| nalgebra::DMatrix::from_column_slice(size, size, values);
+    match (cell, definition.axisymmetric) {
+        (Cell::Quad(_), true) => {
+            let ring = axisymmetric::quad(&material.elasticity, &[local(0), local(1), local(2), local(3)]);
+            let mass: Vec<f64> = ring.volumes.iter().map(|v| rho * v).collect();
+            CellParts { stiffness: matrix(8, ring.stiffness.as_slice()), weight: mass.clone(), mass }
+        }
+        (Cell::Triangle(_), true) => {
+            let ring = axisymmetric::triangle(&material.elasticity, &[local(0), local(1), local(2)]);
+            let mass: Vec<f64> = ring.volumes.iter().map(|v| rho * v).collect();
+            CellParts { stiffness: matrix(6, ring.stiffness.as_slice()), weight: mass.clone(), mass }
+        }
+        (Cell::Quad(_), false) => {
             let corners = [local(0), local(1), local(2), local(3)];
             let area = 0.5 * signed_double_area(&corners);
             let k = stiffness(&material.elasticity, &corners);
-            (nalgebra::DMatrix::from_column_slice(8, 8, k.as_slice()), lumped_mass(material.density, area, 4))
+            let weight = match definition.gravity {
+                Some(_) => shape_integrals(&corners).iter().map(|v| rho * v).collect(),
+                None => Vec::new(),
+            };
+            CellParts { stiffness: matrix(8, k.as_slice()), mass: vec![lumped_mass(rho, area, 4); 4], weight }
         }
-        Cell::Triangle(_) => {
+        (Cell::Triangle(_), false) => {
             let corners = [local(0), local(1), local(2)];
             let area = 0.5 * signed_double_area(&corners);
             let k = triangle_stiffness(&material.elasticity, &corners);
-            (nalgebra::DMatrix::from_column_slice(6, 6, k.as_slice()), lumped_mass(material.density, area, 3))
+            let mass = vec![lumped_mass(rho, area, 3); 3];
+            CellParts { stiffness: matrix(6, k.as_slice()), weight: mass.clone(), mass }
         }
     }
 }
@@ -213,21 +278,21 @@ fn element(cell: &Cell, coordinates: &[[f64; 2]], material: &Material) -> (nalge
 /// Numbers the free degrees of freedom node by node, x before y, and records which constraint
 /// holds each prescribed one. Two boundaries that prescribe one component of a node differently
 /// are refused.
-fn number(definition: &BodyDefinition) -> Result<Dofs, AssemblyError> {
+fn number(definition: &BodyDefinition, constraints: &[Constraint]) -> Result<Dofs, AssemblyError> {
     let mesh = definition.mesh;
     let mut holder: Vec<[Option<usize>; 2]> = vec![[None, None]; mesh.nodes.len()];
-    for (k, constraint) in definition.constraints.iter().enumerate() {
+    for (k, constraint) in constraints.iter().enumerate() {
         for &node in &constraint.nodes {
             for c in (0..2).filter(|&c| constraint.components[c]) {
                 match holder[node][c] {
-                    Some(other) if definition.constraints[other].motion != constraint.motion => {
+                    Some(other) if constraints[other].motion != constraint.motion => {
                         let [x, y] = mesh.nodes[node];
                         return Err(AssemblyError(format!(
                             "the node at ({}, {}) is on boundaries \"{}\" and \"{}\", which prescribe its {} motion \
                              differently; make the groups share no node, or prescribe the same motion",
                             crate::validate::shortest(x),
                             crate::validate::shortest(y),
-                            definition.constraints[other].name,
+                            constraints[other].name,
                             constraint.name,
                             ["x", "y"][c]
                         )));
@@ -251,7 +316,7 @@ fn number(definition: &BodyDefinition) -> Result<Dofs, AssemblyError> {
             })
         })
         .collect();
-    Ok(Dofs { nodes, motions: definition.constraints.iter().map(|c| c.motion.clone()).collect(), free })
+    Ok(Dofs { nodes, motions: constraints.iter().map(|c| c.motion.clone()).collect(), free })
 }
 
 /// The contact points of every contact (two Gauss points per segment, eq. 13) and the normal
@@ -276,7 +341,11 @@ fn contact_boundary(
         let chain = segments(&contact.chain, coordinates);
         for segment in &chain {
             let [a, b] = segment.nodes;
-            for gauss in segment.gauss_points(coordinates) {
+            for mut gauss in segment.gauss_points(coordinates) {
+                if definition.axisymmetric {
+                    // The ring the point stands for: its traction acts around the circumference.
+                    gauss.weight *= 2.0 * std::f64::consts::PI * gauss.position.x;
+                }
                 let [na, nb] = gauss.shape;
                 let along = |direction: [f64; 2]| {
                     Projection::new(
@@ -349,18 +418,26 @@ fn loading_direction(main_body: &MainBody, tangent: [f64; 2]) -> f64 {
     if along < 0.0 { -1.0 } else { 1.0 }
 }
 
-/// `∫ Nᵀ t̄ ds` over the chain's segments: each end of a segment of length `L` carries `t̄ L/2`.
-fn traction_load(load: &TractionLoad, coordinates: &[[f64; 2]], dofs: &Dofs) -> Load {
+/// `∫ Nᵀ t̄ ds` over the chain's segments: each end of a segment of length `L` carries `t̄ L/2`;
+/// around a ring, `∫ Nᵀ t̄ 2π r ds`, each end `t̄ 2π L (2 r_a + r_b)/6` (`r_a` its own radius).
+fn traction_load(load: &TractionLoad, coordinates: &[[f64; 2]], dofs: &Dofs, axisymmetric: bool) -> Load {
     let mut pattern = vec![0.0; dofs.free];
     for segment in segments(&load.chain, coordinates) {
         let traction = match load.traction {
             Traction::Vector(t) => t,
             Traction::Pressure(p) => [p * segment.normal[0], p * segment.normal[1]],
         };
-        for node in segment.nodes {
+        let [ra, rb] = segment.ends.map(|e| e[0]);
+        for (end, node) in segment.nodes.into_iter().enumerate() {
+            let share = if axisymmetric {
+                let (own, other) = if end == 0 { (ra, rb) } else { (rb, ra) };
+                2.0 * std::f64::consts::PI * segment.length * (2.0 * own + other) / 6.0
+            } else {
+                0.5 * segment.length
+            };
             for (c, t) in traction.iter().enumerate() {
                 if let Some(dof) = dofs.free(node, c) {
-                    pattern[dof] += 0.5 * segment.length * t;
+                    pattern[dof] += share * t;
                 }
             }
         }

@@ -5,7 +5,7 @@
 use std::str::FromStr;
 
 use crate::catalog::events::{Rupture, SlipEvent};
-use crate::sink::catalog::{EVENTS_HEADER, RUPTURES_HEADER};
+use crate::sink::catalog::{EVENTS_HEADER, RUPTURES_HEADER, RUPTURES_HEADER_RING};
 
 /// The slip events of an events CSV; `name` stands for the file in messages. The CSV does not
 /// hold the friction force or `1/R*` at the onset: those are NaN and `None`.
@@ -29,9 +29,11 @@ pub fn events(text: &str, name: &str) -> Result<Vec<SlipEvent>, String> {
         .collect()
 }
 
-/// The ruptures of a ruptures CSV; `name` stands for the file in messages.
+/// The ruptures of a ruptures CSV (of a plane body, force drops in N/m, or of a ring, in N);
+/// `name` stands for the file in messages.
 pub fn ruptures(text: &str, name: &str) -> Result<Vec<Rupture>, String> {
-    rows(text, name, RUPTURES_HEADER)?
+    let header = if text.starts_with(RUPTURES_HEADER_RING) { RUPTURES_HEADER_RING } else { RUPTURES_HEADER };
+    rows(text, name, header)?
         .map(|(line, fields)| {
             let index = |i: usize| number::<usize>(fields[i], name, line);
             let value = |i: usize| number::<f64>(fields[i], name, line);

@@ -21,7 +21,7 @@ pub const STEP: &str = "step";
 pub const RUN_INFO: &str = "slipfront/run";
 /// Static `TextDocument` (TOML) written last: how the run ended ([`RunEnding`]).
 pub const RUN_ENDING: &str = "slipfront/ending";
-/// Total friction force `Σ w f_t` (N/m; Pa for unit-area scenes).
+/// Total friction force `Σ w f_t` (N/m; N around an axisymmetric ring; Pa for unit-area scenes).
 pub const FRICTION_FORCE: &str = "contact/friction_force";
 /// Displacement of the base along x (m); for a spring-block, of the spring's far end.
 pub const BASE_UX: &str = "base/u_x";
@@ -328,12 +328,7 @@ pub fn series_plan(layout: &Layout, segments: &[usize], nodes: &[usize], quantit
         labels: vec![label],
         positions: vec![position],
     };
-    plan.push(total(
-        FRICTION_FORCE,
-        Source::FrictionForce,
-        format!("friction force ({})", layout.kind.force_unit()),
-        None,
-    ));
+    plan.push(total(FRICTION_FORCE, Source::FrictionForce, format!("friction force ({})", layout.force_unit()), None));
     let spring = layout.kind == SceneKind::SpringBlock;
     plan.push(total(BASE_UX, Source::Base, if spring { "spring end u_x (m)" } else { "base u_x (m)" }.into(), None));
     if spring {
@@ -395,6 +390,14 @@ pub struct RunInfo {
     /// for one.
     #[serde(default)]
     pub contacts: Vec<String>,
+    /// Whether the body is a ring about the y axis: its friction force is a total around the
+    /// circumference, in N.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub axisymmetric: bool,
+    /// The arc length of each recorded segment's centre along its contact (m), for profiles;
+    /// empty in recordings from before it.
+    #[serde(default)]
+    pub segment_centres: Vec<f64>,
 }
 
 impl RunInfo {
@@ -460,7 +463,17 @@ impl RunInfo {
             slip_rate_threshold: plan.slip_rate_threshold,
             stick_every: plan.spec.stick_every,
             contacts: layout.contacts.iter().map(|c| c.name.clone()).collect(),
+            axisymmetric: layout.axisymmetric,
+            segment_centres: segments
+                .iter()
+                .map(|&k| 0.5 * (layout.segments[k].left + layout.segments[k].right))
+                .collect(),
         }
+    }
+
+    /// Unit of the friction force: N around a ring, else the scene kind's.
+    pub fn force_unit(&self) -> &'static str {
+        if self.axisymmetric { "N" } else { self.kind.force_unit() }
     }
 }
 

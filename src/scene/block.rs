@@ -56,8 +56,9 @@ impl BlockScene {
             drawing,
             driving_velocity: spec.base_velocity.abs(),
             contact_names: vec![BOTTOM.into()],
+            axisymmetric: false,
         };
-        build(case, assembled, presentation)
+        build(case, assembled, presentation, None)
     }
 }
 
@@ -95,6 +96,8 @@ pub fn block(
             main_body: MainBody { motion: base, along_tangent: true },
             normal_traction: Box::new(at),
         }],
+        axisymmetric: false,
+        gravity: None,
     };
     assemble(&definition).expect("a block's boundaries share no node")
 }

@@ -5,6 +5,7 @@
 use crate::case::Case;
 use crate::dynamics::{LinearSolver, Settings, System, condensation_pays};
 use crate::fem::curve::Segment;
+use crate::fem::equilibrium::Equilibrium;
 use crate::fem::{Assembled, Dofs};
 use crate::frame::{ContactInfo, Frame, Layout, MeshDrawing, Needs, NodeInfo, SceneKind, SegmentInfo};
 use crate::scene::dynamic::{DynamicScene, Shape};
@@ -37,11 +38,19 @@ pub struct Presentation {
     pub driving_velocity: f64,
     /// Each contact's name.
     pub contact_names: Vec<String>,
+    /// Whether the body is a ring about the y axis (forces in N, not N/m).
+    pub axisymmetric: bool,
 }
 
-/// Steps an assembled body as `case` asks.
-pub fn build(case: &Case, assembled: Assembled, presentation: Presentation) -> Result<BodyScene, RunError> {
-    let Assembled { body, contact, dofs, contacts } = assembled;
+/// Steps an assembled body as `case` asks, from rest in `equilibrium` where the body has weight
+/// (each loaded contact point's stuck traction under gravity added to its `f0`).
+pub fn build(
+    case: &Case,
+    assembled: Assembled,
+    presentation: Presentation,
+    equilibrium: Option<&Equilibrium>,
+) -> Result<BodyScene, RunError> {
+    let Assembled { body, contact, dofs, contacts, .. } = assembled;
     let mut contact_unknowns: Vec<usize> =
         contact.points.iter().flat_map(|p| p.tangential.terms().map(|(d, _)| d)).collect();
     contact_unknowns.sort_unstable();
@@ -74,7 +83,17 @@ pub fn build(case: &Case, assembled: Assembled, presentation: Presentation) -> R
         drawn: presentation.drawing.1,
         contact_points: if several { contact.surfaces.iter().map(|s| s.points.clone()).collect() } else { Vec::new() },
     };
-    let system = System::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |p| p / 2))?;
+    let mut system = System::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |p| p / 2))?;
+    if let Some(equilibrium) = equilibrium {
+        let tractions: Vec<f64> = system
+            .state
+            .contact
+            .iter()
+            .zip(&equilibrium.traction_t)
+            .map(|(s, g)| if s.traction_n > 0.0 { g + s.traction_t } else { s.traction_t })
+            .collect();
+        system.start_from_tractions(&tractions);
+    }
     Ok(DynamicScene::assemble(case, system, layout, shape))
 }
 
@@ -115,6 +134,7 @@ fn layout(case: &Case, contacts: &[Vec<Segment>], presentation: &Presentation) -
         mesh: Some(presentation.drawing.0.clone()),
         driving_velocity: presentation.driving_velocity,
         instantaneous_slip_rate: case.time.method.instantaneous_slip_rate(),
+        axisymmetric: presentation.axisymmetric,
     }
 }
 

@@ -20,6 +20,7 @@ pub fn scene(case: &Case, spec: &MeshSpec) -> Result<BodyScene, RunError> {
         drawing: drawing::of_mesh(&loaded.mesh, &assembled.contacts),
         driving_velocity: spec.driving_velocity(),
         contact_names: spec.contacts.iter().map(|c| c.group.clone()).collect(),
+        axisymmetric: spec.axisymmetric,
     };
-    build(case, assembled, presentation)
+    build(case, assembled, presentation, loaded.equilibrium.as_ref())
 }

@@ -42,6 +42,7 @@ impl PointScene {
             mesh: None,
             driving_velocity: spec.phases.iter().fold(0.0_f64, |m, p| m.max(p.velocity.abs())),
             instantaneous_slip_rate: false,
+            axisymmetric: false,
         };
         Self { params, phases, layout, state, time: 0.0, step: 0, last_increment: 0.0, relative_slip: 0.0 }
     }

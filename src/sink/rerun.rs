@@ -241,7 +241,7 @@ impl RerunSink {
                         r.end,
                         r.max_slip,
                         r.friction_force_drop,
-                        layout.kind.force_unit()
+                        layout.force_unit()
                     ))
                     .with_level(rerun::TextLogLevel::WARN),
                 )
