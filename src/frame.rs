@@ -225,12 +225,14 @@ pub struct Frame {
     pub surface_nodes: Vec<[f64; 2]>,
     /// `(u_x, u_y)` of every node the drawing uses ([`MeshDrawing::nodes`], m), when needed.
     pub mesh: Vec<[f64; 2]>,
-    /// Total friction force `Σ w f_t` (N/m for a block, Pa for unit-area scenes).
+    /// Total friction force `Σ w f_t` (N/m for a plane body, N around an axisymmetric one, Pa
+    /// for unit-area scenes).
     pub friction_force: f64,
     /// Each contact's own `Σ w f_t` where the body has several (its tractions along its own
     /// tangent); empty where it has one.
     pub contact_forces: Vec<f64>,
-    /// Displacement of the base (m); for a spring-block, of the spring's far end.
+    /// Displacement of the base (m); for a spring-block, of the spring's far end; for a mesh,
+    /// of its first contact's main body along its drive.
     pub base_displacement: f64,
     /// Block displacement and velocity (spring-block scenes).
     pub block: Option<[f64; 2]>,

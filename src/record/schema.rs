@@ -23,7 +23,9 @@ pub const RUN_INFO: &str = "slipfront/run";
 pub const RUN_ENDING: &str = "slipfront/ending";
 /// Total friction force `Σ w f_t` (N/m; N around an axisymmetric ring; Pa for unit-area scenes).
 pub const FRICTION_FORCE: &str = "contact/friction_force";
-/// Displacement of the base along x (m); for a spring-block, of the spring's far end.
+/// Displacement of the base along x (m); for a spring-block, of the spring's far end; for a
+/// mesh, of its first contact's main body along its drive (the direction it first moves in,
+/// or along the contact's tangent where its velocity is given as a speed along it).
 pub const BASE_UX: &str = "base/u_x";
 /// Spring-block displacement (m) and velocity (m/s).
 pub const BLOCK_X: &str = "block/x";
@@ -330,7 +332,12 @@ pub fn series_plan(layout: &Layout, segments: &[usize], nodes: &[usize], quantit
     };
     plan.push(total(FRICTION_FORCE, Source::FrictionForce, format!("friction force ({})", layout.force_unit()), None));
     let spring = layout.kind == SceneKind::SpringBlock;
-    plan.push(total(BASE_UX, Source::Base, if spring { "spring end u_x (m)" } else { "base u_x (m)" }.into(), None));
+    let base = match layout.kind {
+        SceneKind::SpringBlock => "spring end u_x (m)",
+        SceneKind::Mesh => "main body displacement along its drive (m)",
+        _ => "base u_x (m)",
+    };
+    plan.push(total(BASE_UX, Source::Base, base.into(), None));
     if spring {
         plan.push(total(BLOCK_X, Source::BlockX, "block x (m)".into(), Some(0.0)));
         plan.push(total(BLOCK_V, Source::BlockV, "block v (m/s)".into(), Some(1.0)));

@@ -3,7 +3,7 @@
 //! frame shows of it ([`BodyShape`]).
 
 use crate::case::Case;
-use crate::dynamics::{LinearSolver, Settings, System, condensation_pays};
+use crate::dynamics::{LinearSolver, MainBody, Settings, System, condensation_pays};
 use crate::fem::curve::Segment;
 use crate::fem::equilibrium::Equilibrium;
 use crate::fem::{Assembled, Dofs};
@@ -171,8 +171,23 @@ impl Shape for BodyShape {
             mesh: if needs.mesh { displacement(&self.drawn) } else { Vec::new() },
             friction_force,
             contact_forces,
-            base_displacement: system.contact.surfaces[0].main_body.motion.displacement_at(s.time)[0],
+            base_displacement: drive_displacement(&system.contact.surfaces[0].main_body, s.time),
             block: None,
         }
+    }
+}
+
+/// The displacement of a main body along its drive (m): for a speed along the contact's
+/// tangent (the block's base), its first component, the distance travelled along `t`; for a
+/// velocity `[vx, vy]`, its component along the direction it first moves in (x for one that
+/// never moves).
+fn drive_displacement(main_body: &MainBody, t: f64) -> f64 {
+    let u = main_body.motion.displacement_at(t);
+    match main_body.motion.first_velocity() {
+        Some(v) if !main_body.along_tangent => {
+            let speed = v[0].hypot(v[1]);
+            (u[0] * v[0] + u[1] * v[1]) / speed
+        }
+        _ => u[0],
     }
 }
