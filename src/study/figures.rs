@@ -7,7 +7,8 @@
 //!   time (down), on a log colour scale: how ruptures nucleate and propagate.
 //!
 //! Probes are the case's named nodes and segments; without names, up to six recorded ones
-//! spread along the surface.
+//! spread along the surface. A body's recording also gets its contacts' force–displacement
+//! curve and profiles along arc length ([`crate::study::contact_figures`]).
 
 use std::path::{Path, PathBuf};
 use std::sync::Once;
@@ -20,8 +21,8 @@ use crate::inspect::{Recording, Series};
 use crate::record::colormap::{POSITION, SLIP_RATE, sample};
 use crate::record::schema::{self, RunInfo};
 
-const WIDTH: u32 = 1400;
-const HEIGHT: u32 = 800;
+pub(crate) const WIDTH: u32 = 1400;
+pub(crate) const HEIGHT: u32 = 800;
 
 /// Registers the embedded DejaVu Sans as the plots' font (plotters' `ab_glyph` backend reads no
 /// system fonts).
@@ -40,8 +41,9 @@ struct Line<'a> {
     colour: RGBColor,
 }
 
-/// Writes both figures into `out`; returns their paths.
-pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, String> {
+/// Writes the figures into `out`, the profiles at `times` (s; empty: a quarter, half, three
+/// quarters and the end of the recorded span); returns their paths.
+pub fn write_figures(recording: &Recording, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, String> {
     register_font();
     let info: RunInfo = recording
         .static_texts
@@ -118,11 +120,24 @@ pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, 
                 .map(|s| (k as f64, s))
         })
         .collect();
-    if rates.is_empty() {
-        return Ok(vec![fig8, fig9]);
+    let mut written = vec![fig8, fig9];
+    if !rates.is_empty() {
+        plot_spacetime(&spacetime, &info, &rates, end)?;
+        written.push(spacetime);
     }
-    plot_spacetime(&spacetime, &info, &rates, end)?;
-    Ok(vec![fig8, fig9, spacetime])
+    let times = if times.is_empty() { crate::study::contact_figures::default_times(end) } else { times.to_vec() };
+    written.extend(crate::study::contact_figures::write(recording, &info, out, &times)?);
+    Ok(written)
+}
+
+/// The end of the recorded span (s): where `--at` times must lie.
+pub fn recorded_end(recording: &Recording) -> f64 {
+    let t_end = recording
+        .static_texts
+        .get(schema::RUN_INFO)
+        .and_then(|t| toml::from_str::<RunInfo>(t).ok())
+        .map_or(0.0, |info| info.t_end);
+    data_end(recording, t_end)
 }
 
 /// The time axes' end: the last recorded time of any series (a run interrupted or failed ends
@@ -134,7 +149,7 @@ fn data_end(recording: &Recording, t_end: f64) -> f64 {
 
 /// A tick label with as many decimals as ticks `step` apart need to read differently
 /// (`1.4998`, `1.4999`, `1.5000` rather than `1.5` three times).
-fn tick_label(value: f64, step: f64) -> String {
+pub(crate) fn tick_label(value: f64, step: f64) -> String {
     // A step of 9.99999e-6 (a tenth of a span in floating point) is one of 1e-5.
     let decimals = if step > 0.0 && step.is_finite() { (-(step.log10() + 1e-6).floor()).max(0.0) as usize } else { 0 };
     format!("{value:.decimals$}")
@@ -240,7 +255,7 @@ fn plot(path: &Path, panels: &[(&str, &str, &Vec<Line<'_>>)], t_end: f64) -> Res
     write_png(path, &pixels)
 }
 
-fn write_png(path: &Path, pixels: &[u8]) -> Result<(), String> {
+pub(crate) fn write_png(path: &Path, pixels: &[u8]) -> Result<(), String> {
     let file = std::fs::File::create(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
     let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), WIDTH, HEIGHT);
     encoder.set_color(png::ColorType::Rgb);
@@ -250,7 +265,7 @@ fn write_png(path: &Path, pixels: &[u8]) -> Result<(), String> {
     writer.finish().map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
-fn draw_error(e: impl std::fmt::Display) -> String {
+pub(crate) fn draw_error(e: impl std::fmt::Display) -> String {
     format!("cannot draw the figure: {e}")
 }
 
