@@ -466,10 +466,12 @@ impl MeshSpec {
             if f_n > 0.0 && f_t.abs() > strength {
                 let name = &self.contacts[point.surface].group;
                 let rule = format!(
-                    "m/s² loads contact {name:?} beyond its static strength before anything moves: the body at                      rest on it needs |f_t| = {} Pa at a contact point where mu_k (1/R*) f_n = {} Pa (f_n = {} Pa);                      raise the contact's normal traction or its friction, or hold the body by a boundary",
-                    shortest(f_t.abs()),
-                    shortest(strength),
-                    shortest(f_n)
+                    "m/s² loads contact {name:?} beyond its static strength before anything moves: the body at \
+                     rest on it needs |f_t| = {:.1} Pa at a contact point where mu_k (1/R*) f_n = {:.1} Pa (f_n = \
+                     {:.1} Pa); raise the contact's normal traction or its friction, or hold the body by a boundary",
+                    f_t.abs(),
+                    strength,
+                    f_n
                 );
                 c.fail("gravity", value.as_str(), rule);
                 return None;
