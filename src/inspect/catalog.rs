@@ -32,7 +32,8 @@ pub fn events(text: &str, name: &str) -> Result<Vec<SlipEvent>, String> {
 /// The ruptures of a ruptures CSV (of a plane body, force drops in N/m, or of a ring, in N);
 /// `name` stands for the file in messages.
 pub fn ruptures(text: &str, name: &str) -> Result<Vec<Rupture>, String> {
-    let header = if text.starts_with(RUPTURES_HEADER_RING) { RUPTURES_HEADER_RING } else { RUPTURES_HEADER };
+    let ring = text.lines().next() == Some(RUPTURES_HEADER_RING);
+    let header = if ring { RUPTURES_HEADER_RING } else { RUPTURES_HEADER };
     rows(text, name, header)?
         .map(|(line, fields)| {
             let index = |i: usize| number::<usize>(fields[i], name, line);
@@ -114,7 +115,11 @@ mod tests {
             max_slip: 1e-6,
             friction_force_drop: 12.0,
         };
-        assert_eq!(ruptures(&ruptures_csv(std::slice::from_ref(&rupture)), "r.csv").unwrap(), vec![rupture]);
+        assert_eq!(ruptures(&ruptures_csv(std::slice::from_ref(&rupture)), "r.csv").unwrap(), vec![rupture.clone()]);
+        // A ring's header ends in `_n`, a prefix of the plane body's `_n_per_m`: both read back.
+        let ring = crate::sink::catalog::ruptures_csv_in(std::slice::from_ref(&rupture), true);
+        assert!(ring.starts_with(crate::sink::catalog::RUPTURES_HEADER_RING));
+        assert_eq!(ruptures(&ring, "r.csv").unwrap(), vec![rupture]);
         assert!(events("segment\n", "e.csv").unwrap_err().contains("does not start with the catalog's header"));
         let short = format!("{EVENTS_HEADER}\n1,2\n");
         assert_eq!(events(&short, "e.csv").unwrap_err(), "e.csv, line 2: 2 fields where the header has 7");
