@@ -10,7 +10,7 @@
 //! point reached its static strength at once would peak at the same forms with `μ_k (1/R*₀)`.
 //! The run's peak stays below that (how far, and why, below).
 //!
-//! Each run pulls the shaft at 1 cm/s from rest (a 1 s ramp) for 12 s, with healing off
+//! Each run pulls the shaft at 1 cm/s from rest (a 1 s ramp) for 12 s in frames of 0.01 s, with healing off
 //! (`ξ = 0`), so that 11 cm of slip decay the structure to `1/R* - 1 = e^{-κ p}` (eq. 4 with
 //! `m = 1`), 2e-5 of its start, and the sliding ratio `R` to 1.
 
@@ -32,6 +32,7 @@ fn pulled(overrides: &[&str]) -> Case {
     let mut all = vec![
         "friction.xi=0",
         "time.t_end=12",
+        "time.dt=0.01",
         "scene.contacts.0.base_phases=[{velocity=[0.0, 0.01]}]",
         "events.slip_rate_threshold=5e-3",
     ];
