@@ -101,6 +101,10 @@ impl Integrator for RateForm {
         Ok(())
     }
 
+    fn longest_next_step(&self, limit: f64) -> f64 {
+        self.control.next.min(limit)
+    }
+
     fn statistics(&self) -> Statistics {
         self.statistics
     }
