@@ -219,7 +219,8 @@ pub fn run(
     progress.clear();
     // The end of a completed run is a checkpoint too, from which it can be extended (a closed
     // run's was written before its closing steps).
-    if let Some(c) = checkpoints.as_mut().filter(|c| !closed && next_checkpoint - c.every < scene.time() - 1e-9 * c.every)
+    if let Some(c) =
+        checkpoints.as_mut().filter(|c| !closed && next_checkpoint - c.every < scene.time() - 1e-9 * c.every)
         && let Err(e) = observers.checkpoint(scene, k, last_dt, c, time.t_end)
     {
         let _ = observers.finish(Ending::Failed);

@@ -233,7 +233,10 @@ fn assert_same_series_at_shared_steps(longer: &Path, extended: &Path, t: f64) {
             .filter(|(step, _)| !straight.contains_key(step))
             .map(|(_, (time, _))| f64::from_bits(*time))
             .collect();
-        assert!(extra.iter().all(|&time| time == t) && extra.len() <= 1, "{name}: rows the straight run lacks: {extra:?}");
+        assert!(
+            extra.iter().all(|&time| time == t) && extra.len() <= 1,
+            "{name}: rows the straight run lacks: {extra:?}"
+        );
     }
 }
 

@@ -43,10 +43,7 @@ fn at(reference: &[(f64, f64)], t: f64) -> f64 {
 
 /// The largest difference (N/m) between `run` and `reference` at `run`'s steps in the window.
 fn largest_difference(run: &[(f64, f64)], reference: &[(f64, f64)]) -> f64 {
-    run.iter()
-        .filter(|(t, _)| (FROM..=TO).contains(t))
-        .map(|&(t, f)| (f - at(reference, t)).abs())
-        .fold(0.0, f64::max)
+    run.iter().filter(|(t, _)| (FROM..=TO).contains(t)).map(|&(t, f)| (f - at(reference, t)).abs()).fold(0.0, f64::max)
 }
 
 #[test]

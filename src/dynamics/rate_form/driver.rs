@@ -272,8 +272,8 @@ impl RungeKutta {
         let (error, y, rate) = match &mut self.pair {
             Pair::Tsit5(pair) => {
                 let lambda = &mut out.lambda;
-                let error =
-                    pair.step(&self.y, &self.rate, t, h, &self.scale, |t, y, rate| dynamics.rate_form(t, y, rate, lambda));
+                let error = pair
+                    .step(&self.y, &self.rate, t, h, &self.scale, |t, y, rate| dynamics.rate_form(t, y, rate, lambda));
                 (error, pair.solution(), pair.solution_rate())
             }
             Pair::Sdirk4(pair) => {
