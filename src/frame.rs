@@ -104,6 +104,9 @@ pub struct Layout {
     /// totals around the circumference, in N rather than N per unit thickness.
     #[serde(default)]
     pub axisymmetric: bool,
+    /// Whether some contact's normal traction evolves, so that a segment can be open.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub evolving_normal: bool,
 }
 
 /// One contact of a body.
@@ -210,6 +213,9 @@ pub struct SegmentSample {
     pub slip_rate: f64,
     /// Accumulated plastic slip `p` (m).
     pub slip: f64,
+    /// Whether the segment is open: its contact's normal traction evolves and has fallen to 0
+    /// at every one of its points.
+    pub open: bool,
 }
 
 /// Everything a sink may observe after a step (or at `t = 0`).

@@ -328,6 +328,11 @@ fn begin<'s, 'b>(
     let detector = EventDetector::new(layout.segments.len(), options.slip_rate_threshold, options.merge_within)
         .with_instantaneous_rates(layout.instantaneous_slip_rate)
         .with_contacts(layout.contacts.iter().map(|c| c.segments).collect());
+    let detector = if layout.evolving_normal {
+        detector.with_openings(layout.segments.iter().map(|s| s.right - s.left).collect())
+    } else {
+        detector
+    };
     let mut observers = Observers { sinks, detector, last: None };
     if let Err(e) = begun {
         // The initial state is the last good step: the sinks that began keep it.

@@ -9,7 +9,7 @@ use std::sync::Arc;
 use serde::Deserialize;
 
 use crate::case::profile::ProfileSpec;
-use crate::dynamics::{MainBody, Motion};
+use crate::dynamics::{MainBody, Motion, NormalBehaviour};
 use crate::fem::curve::{CurvePoint, segments};
 use crate::fem::equilibrium::{Equilibrium, under_gravity};
 use crate::fem::{
@@ -136,8 +136,13 @@ pub struct ContactSpec {
     /// Every change of the main body's velocity is spread over this time (s); default 0.
     #[serde(default)]
     pub base_ramp_time: f64,
-    /// The normal traction along the contact, held constant (Pa).
+    /// The normal traction along the contact (Pa): held constant, or its initial value.
     pub normal_traction: ProfileSpec,
+    /// `"held"` (default) or `"evolving"`: whether `f_n` follows `ḟ_n = -α_n v̄_n`.
+    #[serde(default)]
+    pub normal: NormalBehaviour,
+    /// The initial normal gap (m) of an evolving contact, where it does not yet touch.
+    pub gap: Option<ProfileSpec>,
     /// This contact's friction constants where they differ from `[friction]`.
     pub friction: Option<toml::Table>,
 }
@@ -327,6 +332,24 @@ impl ContactSpec {
         let mut traction = Checker::new(&prefix);
         self.normal_traction.check(&mut traction);
         c.absorb(traction);
+        if let Some(gap) = &self.gap {
+            if self.normal != NormalBehaviour::Evolving {
+                let rule = format!("needs {} = \"evolving\": a held contact has no gap", c.key("normal"));
+                c.fail("gap", "{...}", rule);
+            }
+            let prefix = c.key("gap");
+            let mut checker = Checker::new(&prefix);
+            gap.check(&mut checker);
+            c.absorb(checker);
+        }
+        if self.normal == NormalBehaviour::Evolving && !velocities.iter().all(|v| v.is_scalar()) {
+            c.fail(
+                "base_velocity",
+                "[vx, vy]",
+                "of an evolving contact must be a number, a speed along the contact: its main body does not press \
+                 it or pull away along its normal",
+            );
+        }
     }
 }
 
@@ -439,8 +462,9 @@ impl MeshSpec {
     }
 
     /// The static equilibrium under gravity ([`crate::fem::equilibrium`]), refused where the
-    /// body is not held or where a contact point would have to carry more than its static
-    /// strength `μ_k (1/R*₀) f_n` to start stuck.
+    /// body is not held, where a contact point would have to carry more than its static
+    /// strength `μ_k (1/R*₀) f_n` to start stuck, or where an evolving contact would start in
+    /// tension or with a gap closed.
     fn settle(&self, loaded: &LoadedMesh, c: &mut Checker<'_>) -> Option<Equilibrium> {
         let g = self.gravity.unwrap_or_default();
         let value = format!("[{}, {}]", shortest(g[0]), shortest(g[1]));
@@ -460,7 +484,24 @@ impl MeshSpec {
         };
         let contact = &assembled.contact;
         for (k, point) in contact.points.iter().enumerate() {
-            let (params, f_n) = (contact.params(k), contact.traction_n[k]);
+            let params = contact.params(k);
+            let f_n = initial_normal_traction(contact, &equilibrium, k);
+            if contact.evolves(k) {
+                let name = &self.contacts[point.surface].group;
+                let closing =
+                    contact.gap[k] > 0.0 && contact.gap[k] + point.normal.apply(&equilibrium.displacement) < 0.0;
+                if (contact.gap[k] <= 0.0 && f_n <= 0.0) || closing {
+                    let rule = format!(
+                        "m/s² {} the evolving contact {name:?} at a contact point where its normal traction would be \
+                         {:.1} Pa: the body at rest under its weight must press every point it starts touching and \
+                         leave every gap open; press the contact (its normal_traction) or hold the body by a boundary",
+                        if closing { "closes a gap of" } else { "lifts the body off" },
+                        f_n
+                    );
+                    c.fail("gravity", value.as_str(), rule);
+                    return None;
+                }
+            }
             let strength = params.mu_k * params.initial_structure() * f_n;
             let f_t = equilibrium.traction_t[k] + params.f0 * point.loading_direction;
             if f_n > 0.0 && f_t.abs() > strength {
@@ -563,6 +604,26 @@ impl MeshSpec {
                 c.fail(&key, format!("{} Pa", shortest(*v)), format!("at the contact point ({}, {}) (arc length {} m): a normal traction must be finite and not negative", shortest(p.x), shortest(p.y), shortest(p.arc)));
                 continue;
             }
+            if let Some(gap) = &contact.gap {
+                let gaps: Vec<(&CurvePoint, f64, f64)> =
+                    points.iter().zip(&values).map(|(p, v)| (p, gap.at(*p), *v)).collect();
+                if let Some((p, g, _)) = gaps.iter().find(|(_, g, _)| !(g.is_finite() && *g >= 0.0)) {
+                    c.fail(
+                        &format!("contacts[{i}].gap"),
+                        format!("{} m", shortest(*g)),
+                        format!(
+                            "at the contact point ({}, {}): a gap must be finite and not negative",
+                            shortest(p.x),
+                            shortest(p.y)
+                        ),
+                    );
+                    continue;
+                }
+                if let Some((p, g, v)) = gaps.iter().find(|(_, g, v)| *g > 0.0 && *v > 0.0) {
+                    c.fail(&format!("contacts[{i}].gap"), format!("{} m", shortest(*g)), format!("at the contact point ({}, {}), where the normal traction is {} Pa: a point is pressed (gap 0) or open (normal traction 0), not both", shortest(p.x), shortest(p.y), shortest(*v)));
+                    continue;
+                }
+            }
             let params = &loaded.contact_params[i];
             let weakest = values.iter().copied().filter(|v| *v > 0.0).fold(f64::INFINITY, f64::min);
             let strength = params.mu_k * params.initial_structure() * weakest;
@@ -593,6 +654,11 @@ impl MeshSpec {
                 params: params.clone(),
                 main_body: contact.main_body(),
                 normal_traction: Box::new(move |p: CurvePoint| contact.normal_traction.at(p)),
+                normal: contact.normal,
+                gap: contact
+                    .gap
+                    .as_ref()
+                    .map(|gap| Box::new(move |p: CurvePoint| gap.at(p)) as Box<dyn Fn(CurvePoint) -> f64>),
             },
         );
         BodyDefinition {
@@ -698,6 +764,16 @@ fn chain(mesh: &Mesh, name: &str, key: &str, c: &mut Checker<'_>) -> Option<Vec<
             c.fail(key, format!("{name:?}"), format!("is not one open chain of boundary edges: {e}"));
             None
         }
+    }
+}
+
+/// Contact point `k`'s normal traction at the start: the prescribed one, and on an evolving
+/// contact also the share of the weight its normal spring carries in `equilibrium`.
+pub fn initial_normal_traction(contact: &crate::dynamics::ContactBoundary, equilibrium: &Equilibrium, k: usize) -> f64 {
+    if contact.evolves(k) && contact.gap[k] <= 0.0 {
+        contact.traction_n[k] + equilibrium.traction_n[k]
+    } else {
+        contact.traction_n[k]
     }
 }
 

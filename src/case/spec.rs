@@ -4,6 +4,7 @@ use serde::Deserialize;
 
 use crate::case::mesh::MeshSpec;
 use crate::case::profile;
+use crate::dynamics::NormalBehaviour;
 use crate::dynamics::method::{ACCURACY_RANGE, Choice, MAX_STEPS, Method};
 use crate::frame::Quantity;
 use crate::friction::FrictionParams;
@@ -284,8 +285,11 @@ pub enum SceneSpec {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PointSpec {
-    /// Normal traction `f_n` (Pa).
+    /// Normal traction `f_n` (Pa): held constant, or its initial value.
     pub normal_traction: f64,
+    /// `"held"` (default) or `"evolving"`: `ḟ_n = -α_n v̄_n` under the phases' `normal_velocity`.
+    #[serde(default)]
+    pub normal: NormalBehaviour,
     /// Relative sliding velocity `v̄_t = v_block - v_base` (m/s) held for `duration` (s), in
     /// order; after the last phase the point is held (`v̄_t = 0`).
     pub phases: Vec<Phase>,
@@ -299,6 +303,9 @@ pub struct Phase {
     pub velocity: f64,
     /// Duration (s).
     pub duration: f64,
+    /// Relative normal velocity `v̄_n` (m/s, positive opening); only with `normal = "evolving"`.
+    #[serde(default)]
+    pub normal_velocity: f64,
 }
 
 /// `kind = "spring_block"`.
@@ -339,8 +346,11 @@ pub struct BlockSpec {
     /// default) starts it impulsively.
     #[serde(default)]
     pub base_ramp_time: f64,
-    /// Normal traction on the contact, held constant (Pa).
+    /// Normal traction on the contact (Pa): held constant, or its initial value.
     pub normal_traction: NormalTractionSpec,
+    /// `"held"` (default) or `"evolving"`: whether the normal traction follows `ḟ_n = -α_n v̄_n`.
+    #[serde(default)]
+    pub normal: NormalBehaviour,
 }
 
 /// Normal traction along the contact.
@@ -467,6 +477,17 @@ impl SceneSpec {
         if v > 0.0 && v.is_finite() { v } else { 1e-3 }
     }
 
+    /// Whether some contact's normal traction evolves (`normal = "evolving"`).
+    pub fn has_evolving_normal(&self) -> bool {
+        let evolving = |n: &NormalBehaviour| *n == NormalBehaviour::Evolving;
+        match self {
+            SceneSpec::Point(p) => evolving(&p.normal),
+            SceneSpec::SpringBlock(_) => false,
+            SceneSpec::Block(b) => evolving(&b.normal),
+            SceneSpec::Mesh(m) => m.contacts.iter().any(|c| evolving(&c.normal)),
+        }
+    }
+
     pub fn check(&self, c: &mut Checker<'_>) {
         match self {
             SceneSpec::Point(p) => {
@@ -477,6 +498,15 @@ impl SceneSpec {
                 for (i, phase) in p.phases.iter().enumerate() {
                     c.finite(&format!("phases[{i}].velocity"), phase.velocity);
                     c.positive(&format!("phases[{i}].duration"), phase.duration);
+                    let key = format!("phases[{i}].normal_velocity");
+                    if c.finite(&key, phase.normal_velocity)
+                        && phase.normal_velocity != 0.0
+                        && p.normal != NormalBehaviour::Evolving
+                    {
+                        let rule =
+                            format!("needs {} = \"evolving\": a held normal traction does not move", c.key("normal"));
+                        c.fail(&key, phase.normal_velocity, rule);
+                    }
                 }
             }
             SceneSpec::SpringBlock(s) => {

@@ -185,7 +185,7 @@ impl System {
             && s.contact.len() == m
             && s.plastic_increment.len() == m
             && (s.plastic_rate.is_empty() || s.plastic_rate.len() == m)
-            && memory.factored.as_ref().is_none_or(|(_, k)| k.len() == m);
+            && memory.factored.as_ref().is_none_or(|(_, k)| k.len() == m || k.len() == 2 * m);
         if !fits {
             return Err(format!(
                 "the checkpoint's state ({} unknowns, {} contact points) does not fit this case ({n} unknowns, {m} \
@@ -269,6 +269,7 @@ impl System {
         for (point, c) in self.contact.points.iter().zip(&s.contact) {
             point.scatter(point.weight * c.traction_t, &mut imbalance);
         }
+        self.contact.scatter_normal_corrections(&s.displacement, &mut imbalance);
         max_abs(&imbalance)
     }
 }

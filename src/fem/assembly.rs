@@ -10,7 +10,8 @@ use nalgebra::Vector2;
 
 use crate::dynamics::contact::padded;
 use crate::dynamics::{
-    ContactBoundary, ContactPoint, ContactSurface, LinearBody, Load, LoadHistory, MainBody, Motion, Projection,
+    ContactBoundary, ContactPoint, ContactSurface, LinearBody, Load, LoadHistory, MainBody, Motion, NormalBehaviour,
+    Projection,
 };
 use crate::fem::axisymmetric;
 use crate::fem::body_mesh::{Cell, Mesh};
@@ -63,8 +64,12 @@ pub struct ContactDefinition<'a> {
     pub chain: Vec<usize>,
     pub params: FrictionParams,
     pub main_body: MainBody,
-    /// The normal traction `f_n` (Pa) at a Gauss point, held constant.
+    /// The normal traction `f_n` (Pa) at a Gauss point: held constant, or its initial value.
     pub normal_traction: Box<dyn Fn(CurvePoint) -> f64 + 'a>,
+    /// Whether `f_n` is held or evolves.
+    pub normal: NormalBehaviour,
+    /// The initial normal gap (m) at a Gauss point of an evolving contact; none: 0.
+    pub gap: Option<Box<dyn Fn(CurvePoint) -> f64 + 'a>>,
 }
 
 /// A body to assemble: its mesh, each cell's material, its boundaries and contacts.
@@ -324,16 +329,19 @@ fn number(definition: &BodyDefinition, constraints: &[Constraint]) -> Result<Dof
 ///
 /// Normal direction: the main body is rigid, and the contact's elastic normal modulus `α_n`
 /// (the normal part of `C^e`) ties the body to it, so a change of normal displacement changes
-/// the normal traction by `-α_n Δu_n`. This spring is linear and joins `K`. The friction law
-/// sees the prescribed normal traction, held constant in time as the paper assumes (§3.2), so
-/// that the initial distribution alone governs the frictional strength.
+/// the normal traction by `-α_n Δu_n`. This spring is linear and joins `K`. Under a held normal
+/// traction the friction law sees the prescribed one, constant in time as the paper assumes
+/// (§3.2), so that the initial distribution alone governs the frictional strength; under an
+/// evolving one it sees `f_n⁰ - α_n (g₀ + Δu_n)`, and where that would not be positive the
+/// integrators take the spring away again ([`ContactBoundary::normal_correction`]).
 fn contact_boundary(
     definition: &BodyDefinition,
     dofs: &Dofs,
     triplets: &mut Vec<(usize, usize, f64)>,
 ) -> Result<(ContactBoundary, Vec<Vec<Segment>>), AssemblyError> {
     let coordinates = &definition.mesh.nodes;
-    let mut boundary = ContactBoundary { surfaces: Vec::new(), points: Vec::new(), traction_n: Vec::new() };
+    let mut boundary =
+        ContactBoundary { surfaces: Vec::new(), points: Vec::new(), traction_n: Vec::new(), gap: Vec::new() };
     let mut all = Vec::new();
     for (surface, contact) in definition.contacts.iter().enumerate() {
         let first = boundary.points.len();
@@ -369,6 +377,7 @@ fn contact_boundary(
                     loading_direction: loading_direction(&contact.main_body, segment.tangent),
                 });
                 boundary.traction_n.push((contact.normal_traction)(gauss.position));
+                boundary.gap.push(contact.gap.as_ref().map_or(0.0, |gap| gap(gauss.position)));
             }
         }
         let (points, terms) = padded(boundary.points.split_off(first));
@@ -376,6 +385,7 @@ fn contact_boundary(
         boundary.surfaces.push(ContactSurface {
             params: contact.params.clone(),
             main_body: contact.main_body.clone(),
+            normal: contact.normal,
             points: first..boundary.points.len(),
             terms,
         });

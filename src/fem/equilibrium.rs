@@ -6,7 +6,11 @@
 //! eq. (6)'s `C^e` (its main body at rest): the tangential spring `α_t` (stuck, no slip yet) and
 //! the normal spring `α_n` already in `K`,
 //!
-//! `(K + K_t) u_g = f_g`, `K_t = Σ w α_t (t·Ñ)ᵀ (t·Ñ)` over the points with `f_n > 0`,
+//! `(K + K_t) u_g = f_g`, `K_t = Σ w α_t (t·Ñ)ᵀ (t·Ñ)` over the loaded points,
+//!
+//! a loaded point being one with `f_n > 0` on a held contact, and one without an initial gap on
+//! an evolving contact (whose normal traction the weight itself may give); an evolving point
+//! with a gap carries nothing, so its normal spring leaves `K` here.
 //!
 //! solved once by the sparse Cholesky factor of [`crate::linalg::sparse`]. Each point then
 //! carries the tangential traction `f_t = -α_t t·Ñ u_g` (the traction the main body exerts on
@@ -30,7 +34,8 @@ pub struct Equilibrium {
     pub traction_t: Vec<f64>,
     /// Each contact point's normal spring traction `-α_n n·Ñ u_g` (Pa, positive in
     /// compression): the share of the weight the contact carries, which the prescribed normal
-    /// traction of a held contact does not follow (an evolving one would start from it).
+    /// traction of a held contact does not follow; an evolving one starts from the prescribed
+    /// traction plus it.
     pub traction_n: Vec<f64>,
 }
 
@@ -55,7 +60,15 @@ fn solve(assembled: &Assembled, force: &[f64]) -> Result<Equilibrium, String> {
     let n = body.dofs();
     let mut triplets: Vec<(usize, usize, f64)> = body.stiffness.entries().collect();
     for (k, point) in contact.points.iter().enumerate() {
-        if contact.traction_n[k] <= 0.0 {
+        if contact.evolves(k) && contact.gap[k] > 0.0 {
+            let spring = -point.weight * contact.params(k).alpha_n;
+            for (a, ca) in point.normal.terms() {
+                for (b, cb) in point.normal.terms() {
+                    triplets.push((a, b, spring * ca * cb));
+                }
+            }
+        }
+        if !loaded(contact, k) {
             continue;
         }
         let spring = point.weight * contact.params(k).alpha_t;
@@ -80,12 +93,21 @@ fn solve(assembled: &Assembled, force: &[f64]) -> Result<Equilibrium, String> {
     }
     let traction_t = (0..contact.points.len())
         .map(|k| {
-            let held = contact.traction_n[k] > 0.0;
-            if held { -contact.params(k).alpha_t * contact.points[k].tangential.apply(&displacement) } else { 0.0 }
+            if loaded(contact, k) {
+                -contact.params(k).alpha_t * contact.points[k].tangential.apply(&displacement)
+            } else {
+                0.0
+            }
         })
         .collect();
     let traction_n = (0..contact.points.len())
         .map(|k| -contact.params(k).alpha_n * contact.points[k].normal.apply(&displacement))
         .collect();
     Ok(Equilibrium { displacement, traction_t, traction_n })
+}
+
+/// Whether contact point `k` is held stuck in the equilibrium: pressed by a held normal
+/// traction, or without a gap on an evolving contact.
+pub fn loaded(contact: &crate::dynamics::ContactBoundary, k: usize) -> bool {
+    if contact.evolves(k) { contact.gap[k] <= 0.0 } else { contact.traction_n[k] > 0.0 }
 }

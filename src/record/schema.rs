@@ -80,6 +80,8 @@ pub const CONTACT_STATE: &str = "contact/state";
 /// The state values of [`CONTACT_STATE`].
 pub const STICK: &str = "stick";
 pub const SLIP: &str = "slip";
+/// The lane state of an open segment (its contact's normal traction has fallen to 0).
+pub const OPEN: &str = "open";
 /// Profiles along x at the playhead (`BarChart`s over the segments' centres, in m).
 pub const PROFILE: &str = "profile";
 pub const PROFILE_STATIC_STRENGTH: &str = "profile/static_strength";

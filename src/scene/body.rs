@@ -50,7 +50,14 @@ pub fn build(
     presentation: Presentation,
     equilibrium: Option<&Equilibrium>,
 ) -> Result<BodyScene, RunError> {
-    let Assembled { body, contact, dofs, contacts, .. } = assembled;
+    let Assembled { body, mut contact, dofs, contacts, .. } = assembled;
+    if let Some(equilibrium) = equilibrium {
+        // An evolving contact starts from the normal traction its springs carry at rest.
+        let initial: Vec<f64> = (0..contact.points.len())
+            .map(|k| crate::case::mesh::initial_normal_traction(&contact, equilibrium, k))
+            .collect();
+        contact.traction_n = initial;
+    }
     let mut contact_unknowns: Vec<usize> =
         contact.points.iter().flat_map(|p| p.tangential.terms().map(|(d, _)| d)).collect();
     contact_unknowns.sort_unstable();
@@ -58,6 +65,9 @@ pub fn build(
     // A large body at a fixed step is condensed onto its contact; adaptive steps change τ
     // every attempt, and each new τ would need the body refactored.
     let fixed = case.time.method.fixed_implicit_steps(case.time.tolerance);
+    // An evolving normal changes the operator's normal springs: the condensation keeps only the
+    // tangential unknowns.
+    let fixed = fixed && !contact.any_evolving();
     let linear_solver = if condensation_pays(body.dofs(), contact_unknowns.len()) && fixed {
         LinearSolver::Condensed
     } else {
@@ -135,6 +145,7 @@ fn layout(case: &Case, contacts: &[Vec<Segment>], presentation: &Presentation) -
         driving_velocity: presentation.driving_velocity,
         instantaneous_slip_rate: case.time.method.instantaneous_slip_rate(),
         axisymmetric: presentation.axisymmetric,
+        evolving_normal: case.scene.has_evolving_normal(),
     }
 }
 
@@ -148,11 +159,14 @@ impl Shape for BodyShape {
         let points = &system.contact.points;
         let segments = (0..self.segments)
             .map(|k| {
-                segment_sample(
+                let mut sample = segment_sample(
                     system.contact.params(2 * k),
                     (2 * k..2 * k + 2).map(|p| (points[p].weight, s.contact[p], s.slip_rate(p, dt))),
                     needs.segment_state,
-                )
+                );
+                sample.open =
+                    system.contact.evolves(2 * k) && (2 * k..2 * k + 2).all(|p| s.contact[p].traction_n <= 0.0);
+                sample
             })
             .collect();
         let force = |range: std::ops::Range<usize>| -> f64 {

@@ -64,7 +64,16 @@ pub enum SceneMemory {
     Dynamic { system: Box<SystemMemory>, integrator: Box<IntegratorMemory> },
     /// The point scene: its contact state, time, step, last plastic increment and the slip
     /// it has been driven through.
-    Point { state: ContactState, time: f64, step: u64, last_increment: f64, relative_slip: f64 },
+    Point {
+        state: ContactState,
+        time: f64,
+        step: u64,
+        last_increment: f64,
+        relative_slip: f64,
+        /// `∫ v̄_n dt` of an evolving normal traction (m).
+        #[serde(default)]
+        normal_opening: f64,
+    },
 }
 
 impl SceneMemory {

@@ -1,9 +1,11 @@
-//! The event catalog sink: `<stem>.events.csv` and, for a block, `<stem>.ruptures.csv`.
+//! The event catalog sink: `<stem>.events.csv`, for a block `<stem>.ruptures.csv`, and where a
+//! contact's normal traction evolves `<stem>.openings.csv`.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use crate::catalog::events::{Catalog, Rupture, SlipEvent};
+use crate::catalog::openings::Opening;
 use crate::frame::Ending;
 use crate::frame::{Frame, Layout};
 use crate::sink::{Sink, SinkError};
@@ -17,10 +19,15 @@ pub const RUPTURES_HEADER: &str = "onset_s,end_s,nucleation_segment,first_segmen
 pub const RUPTURES_HEADER_RING: &str =
     "onset_s,end_s,nucleation_segment,first_segment,last_segment,segments_slipped,max_slip_m,friction_force_drop_n";
 
+/// Header of the openings CSV.
+pub const OPENINGS_HEADER: &str = "contact,onset_s,end_s,closed,first_segment,last_segment,largest_open_length_m";
+
 /// Writes the catalogs when the run ends (completed, failed or interrupted).
 pub struct CatalogSink {
     events_path: PathBuf,
     ruptures_path: Option<PathBuf>,
+    /// Where a contact's normal traction evolves.
+    openings_path: Option<PathBuf>,
     /// Whether the body is a ring (its force drops in N).
     ring: bool,
 }
@@ -28,7 +35,7 @@ pub struct CatalogSink {
 impl CatalogSink {
     /// `ruptures_path` is used for block scenes only.
     pub fn new(events_path: PathBuf, ruptures_path: Option<PathBuf>) -> Self {
-        Self { events_path, ruptures_path, ring: false }
+        Self { events_path, ruptures_path, openings_path: None, ring: false }
     }
 }
 
@@ -38,8 +45,12 @@ impl Sink for CatalogSink {
             self.ruptures_path = None;
         }
         self.ring = layout.axisymmetric;
+        self.openings_path = layout.evolving_normal.then(|| openings_path_for(&self.events_path));
         // Fail now, not after the run, if the file cannot be written.
         write_file(&self.events_path, &events_csv(&[]))?;
+        if let Some(path) = &self.openings_path {
+            write_file(path, &openings_csv(&[]))?;
+        }
         if let Some(path) = &self.ruptures_path {
             write_file(path, &ruptures_csv_in(&[], self.ring))?;
         }
@@ -54,6 +65,9 @@ impl Sink for CatalogSink {
         write_file(&self.events_path, &events_csv(&catalog.events))?;
         if let Some(path) = &self.ruptures_path {
             write_file(path, &ruptures_csv_in(&catalog.ruptures, self.ring))?;
+        }
+        if let Some(path) = &self.openings_path {
+            write_file(path, &openings_csv(&catalog.openings))?;
         }
         Ok(())
     }
@@ -101,4 +115,25 @@ pub fn ruptures_csv_in(ruptures: &[Rupture], ring: bool) -> String {
         );
     }
     out
+}
+
+/// The openings CSV text.
+pub fn openings_csv(openings: &[Opening]) -> String {
+    let mut out = String::from(OPENINGS_HEADER);
+    out.push('\n');
+    for o in openings {
+        let _ = writeln!(
+            out,
+            "{},{},{},{},{},{},{}",
+            o.contact, o.onset, o.end, o.closed, o.first_segment, o.last_segment, o.largest_length
+        );
+    }
+    out
+}
+
+/// `<dir>/<x>.openings.csv` beside `<dir>/<x>.events.csv` (or `<stem>.openings.csv`).
+pub fn openings_path_for(events: &std::path::Path) -> PathBuf {
+    let name = events.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let stem = name.strip_suffix(".events.csv").or_else(|| name.strip_suffix(".csv")).unwrap_or(&name);
+    events.with_file_name(format!("{stem}.openings.csv"))
 }

@@ -21,6 +21,14 @@ pub enum Tableau {
     Sdirk4,
 }
 
+/// What a located crossing watches: a point's plastic slip rate against the event threshold,
+/// or an evolving point's normal traction against 0.
+#[derive(Debug, Clone, Copy)]
+enum Watch {
+    Slip(usize),
+    Normal(usize),
+}
+
 /// Root-finding steps allowed when locating a crossing.
 const MAX_LOCATING_STEPS: usize = 60;
 
@@ -174,6 +182,9 @@ fn accept(system: &mut System, rk: &mut RungeKutta, time: f64, mut trial: Trial)
         c.traction_t = trial.y[2 * n + i];
         c.structure = trial.y[2 * n + m + i];
         c.plastic_slip = slip;
+        if system.contact.evolves(i) {
+            c.traction_n = system.contact.normal_traction_at(i, &trial.y[..n]);
+        }
     }
     s.plastic_rate.clone_from(&trial.lambda);
     s.time = time;
@@ -290,8 +301,9 @@ impl RungeKutta {
         Ok(())
     }
 
-    /// If the accepted `trial` of `h` from `t` carries some point's `Λ` across `level`, the
-    /// shortened step that ends just past the first such crossing, and its state.
+    /// If the accepted `trial` of `h` from `t` carries some point's `Λ` across `level`, or an
+    /// evolving point's normal traction through 0 (it opens or closes), the shortened step
+    /// that ends just past the first such crossing, and its state.
     fn crossing(
         &mut self,
         dynamics: &mut System,
@@ -303,19 +315,30 @@ impl RungeKutta {
     ) -> Option<(f64, Trial)> {
         let side = |lambda: f64| lambda > level;
         // The point whose crossing comes first by linear interpolation of Λ over the step.
-        let (point, _) = self
+        let slip = self
             .lambda
             .iter()
             .zip(&trial.lambda)
             .enumerate()
             .filter(|(_, (a, b))| side(**a) != side(**b))
-            .map(|(i, (a, b))| (i, (level - a) / (b - a)))
-            .min_by(|x, y| x.1.total_cmp(&y.1))?;
-        let before = side(self.lambda[point]);
-        let g = |lambda: &[f64]| lambda[point] - level;
+            .map(|(i, (a, b))| (Watch::Slip(i), (level - a) / (b - a)));
+        let n = dynamics.body.dofs();
+        let normal = |dynamics: &System, y: &[f64], i: usize| dynamics.contact.normal_trial(i, &y[..n]);
+        let contact = &dynamics.contact;
+        let opening = (0..contact.points.len())
+            .filter(|&i| contact.evolves(i))
+            .map(|i| (i, normal(dynamics, &self.y, i), normal(dynamics, &trial.y, i)))
+            .filter(|(_, a, b)| (*a > 0.0) != (*b > 0.0))
+            .map(|(i, a, b)| (Watch::Normal(i), -a / (b - a)));
+        let (watch, _) = slip.chain(opening).min_by(|x, y| x.1.total_cmp(&y.1))?;
+        let value = |dynamics: &System, lambda: &[f64], y: &[f64]| match watch {
+            Watch::Slip(point) => lambda[point] - level,
+            Watch::Normal(point) => normal(dynamics, y, point),
+        };
+        let before = value(dynamics, &self.lambda, &self.y) > 0.0;
         // Illinois: regula falsi that halves the weight of an end kept twice in a row.
-        let (mut lo, mut g_lo) = (0.0, g(&self.lambda));
-        let (mut hi, mut g_hi) = (h, g(&trial.lambda));
+        let (mut lo, mut g_lo) = (0.0, value(dynamics, &self.lambda, &self.y));
+        let (mut hi, mut g_hi) = (h, value(dynamics, &trial.lambda, &trial.y));
         let mut past: Option<Trial> = None;
         let mut attempt = self.spare();
         let mut kept = 0_i32;
@@ -330,20 +353,20 @@ impl RungeKutta {
             if self.trial(dynamics, t, s, tolerance, &mut attempt).is_err() {
                 break;
             }
-            let value = g(&attempt.lambda);
-            if !value.is_finite() {
+            let at = value(dynamics, &attempt.lambda, &attempt.y);
+            if !at.is_finite() {
                 break;
             }
-            if side(attempt.lambda[point]) == before {
+            if (at > 0.0) == before {
                 lo = s;
-                g_lo = value;
+                g_lo = at;
                 if kept == -1 {
                     g_hi *= 0.5;
                 }
                 kept = -1;
             } else {
                 hi = s;
-                g_hi = value;
+                g_hi = at;
                 let spare = past.replace(attempt).unwrap_or_else(|| self.spare());
                 attempt = spare;
                 if kept == 1 {

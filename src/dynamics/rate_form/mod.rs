@@ -43,7 +43,7 @@ pub mod memory;
 pub mod sdirk4;
 pub mod tsit5;
 
-use crate::dynamics::contact::ContactSurface;
+use crate::dynamics::contact::{ContactSurface, NormalBehaviour};
 use crate::dynamics::system::System;
 use crate::friction::{ContactState, law};
 
@@ -57,12 +57,19 @@ impl System {
     pub(crate) fn project(&self, y: &mut [f64]) -> bool {
         let n = self.body.dofs();
         let m = self.contact.points.len();
-        let (traction, structure) = y[2 * n..2 * n + 2 * m].split_at_mut(m);
+        let (u, rest) = y.split_at_mut(2 * n);
+        let (traction, structure) = rest[..2 * m].split_at_mut(m);
         let mut moved = false;
-        for (k, ((f_t, z), &f_n)) in
+        for (k, ((f_t, z), &held)) in
             traction.iter_mut().zip(structure.iter_mut()).zip(&self.contact.traction_n).enumerate()
         {
             let params = self.contact.params(k);
+            let f_n = if self.contact.evolves(k) { self.contact.normal_traction_at(k, &u[..n]) } else { held };
+            if self.contact.evolves(k) && f_n <= 0.0 && *f_t != 0.0 {
+                // Open: no traction.
+                *f_t = 0.0;
+                moved = true;
+            }
             let inside = z.clamp(1.0, params.max_structure());
             if inside != *z {
                 *z = inside;
@@ -99,6 +106,10 @@ impl System {
         let (y_contact, rate_contact) = ((traction, structure, slip), (dtraction, dstructure, dslip));
         let mut out = (rate_contact, &mut *lambda);
         for surface in &self.contact.surfaces {
+            if surface.normal == NormalBehaviour::Evolving {
+                self.evolving_contact_rates(surface, t, (u, v), y_contact, &mut out, dv);
+                continue;
+            }
             match surface.terms {
                 1 => self.contact_rates::<1>(surface, t, v, y_contact, &mut out, dv),
                 2 => self.contact_rates::<2>(surface, t, v, y_contact, &mut out, dv),
@@ -140,7 +151,49 @@ impl System {
                 params,
                 &state,
                 point.tangential.apply_n::<N>(v) - main_body.along(point, base),
+                0.0,
             );
+            dtraction[i] = rate;
+            dstructure[i] = law::structure_rate(params, structure[i], multiplier);
+            dslip[i] = multiplier;
+            lambda[i] = multiplier;
+        }
+    }
+
+    /// [`Self::contact_rates`] for a surface whose normal traction evolves: each point's `f_n`
+    /// from the displacement (`f_n⁰ - α_n (g₀ + n·Ñu)`, [`crate::dynamics::ContactBoundary::normal_traction_at`]),
+    /// its normal force beyond `K`'s spring into `dv`, and `ḟ_t` of eq. (6) with the normal
+    /// sliding velocity `v̄_n = n·Ñv` in eq. (5)'s numerator. An open point transmits nothing
+    /// and its state rests: `ḟ_t = 0`, `d(1/R*)/dt = 0`, `Λ = 0`.
+    #[allow(clippy::type_complexity)]
+    fn evolving_contact_rates(
+        &self,
+        surface: &ContactSurface,
+        t: f64,
+        (u, v): (&[f64], &[f64]),
+        (traction, structure, slip): (&[f64], &[f64], &[f64]),
+        ((dtraction, dstructure, dslip), lambda): &mut ((&mut [f64], &mut [f64], &mut [f64]), &mut [f64]),
+        dv: &mut [f64],
+    ) {
+        let (params, main_body, contact) = (&surface.params, &surface.main_body, &self.contact);
+        let base = main_body.motion.velocity_at(t);
+        for i in surface.points.clone() {
+            let point = &contact.points[i];
+            let f_n = contact.normal_traction_at(i, u);
+            point.normal.scatter(contact.normal_correction(i, f_n, u), dv);
+            if f_n <= 0.0 {
+                (dtraction[i], dstructure[i], dslip[i], lambda[i]) = (0.0, 0.0, 0.0, 0.0);
+                continue;
+            }
+            point.tangential.scatter(point.weight * traction[i], dv);
+            let state = ContactState {
+                traction_t: traction[i],
+                traction_n: f_n,
+                structure: structure[i],
+                plastic_slip: slip[i],
+            };
+            let v_t = point.tangential.apply(v) - main_body.along(point, base);
+            let (rate, multiplier) = law::tangential_rate_and_multiplier(params, &state, v_t, point.normal.apply(v));
             dtraction[i] = rate;
             dstructure[i] = law::structure_rate(params, structure[i], multiplier);
             dslip[i] = multiplier;
