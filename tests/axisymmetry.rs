@@ -79,6 +79,7 @@ fn radial_error(nr: usize, triangles: bool) -> f64 {
             chain: mesh.boundary_chain("inner").unwrap(),
             traction: Traction::Pressure(PRESSURE),
             ramp: 0.0,
+            duration: None,
         }],
         contacts: Vec::new(),
         axisymmetric: true,

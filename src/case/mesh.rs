@@ -120,6 +120,9 @@ pub struct BoundarySpec {
     /// default 0: at once.
     #[serde(default)]
     pub ramp_time: f64,
+    /// A traction or pressure acts this long (s), then falls back to 0 over `ramp_time`;
+    /// default: to the end.
+    pub duration: Option<f64>,
 }
 
 /// `[[scene.contacts]]`.
@@ -242,6 +245,18 @@ impl BoundarySpec {
             return;
         }
         c.non_negative("ramp_time", self.ramp_time);
+        if let Some(duration) = self.duration {
+            if self.traction.is_none() && self.pressure.is_none() {
+                c.fail("duration", duration, "applies to a traction or a pressure only");
+            } else if !(duration.is_finite() && duration >= self.ramp_time && duration > 0.0) {
+                let rule = format!(
+                    "must be finite, positive and at least {} = {} (the load rises over it)",
+                    c.key("ramp_time"),
+                    self.ramp_time
+                );
+                c.fail("duration", duration, rule);
+            }
+        }
         let velocities: Vec<VelocitySpec> =
             self.velocity.into_iter().chain(self.phases.iter().flatten().map(|p| p.velocity)).collect();
         if let (true, Some(components)) = (velocities.is_empty(), self.components) {
@@ -645,7 +660,7 @@ impl MeshSpec {
                 (None, Some(p)) => Traction::Pressure(p),
                 (None, None) => return None,
             };
-            Some(TractionLoad { chain: chain.clone()?, traction, ramp: b.ramp_time })
+            Some(TractionLoad { chain: chain.clone()?, traction, ramp: b.ramp_time, duration: b.duration })
         });
         let contacts = self.contacts.iter().zip(&loaded.contact_chains).zip(&loaded.contact_params).map(
             |((contact, chain), params)| ContactDefinition {

@@ -36,6 +36,9 @@ pub enum LoadHistory {
     /// `g(t)` rises smoothly from 0 to 1 over `ramp` seconds (`s³ (10 - 15 s + 6 s²)`) and stays
     /// there: a prescribed traction on `S_t` (eq. 10); `ramp = 0` applies it at once.
     Ramp { ramp: f64 },
+    /// `g(t)` rises as [`Self::Ramp`], and falls the same way from `duration` on: a traction
+    /// applied for a while, then removed.
+    Pulse { ramp: f64, duration: f64 },
 }
 
 impl LoadHistory {
@@ -45,6 +48,10 @@ impl LoadHistory {
             LoadHistory::Linear => t,
             LoadHistory::Displacement { motion, component } => motion.displacement_at(t)[*component],
             LoadHistory::Ramp { ramp } => Motion::constant([1.0, 0.0], *ramp).velocity_at(t)[0],
+            LoadHistory::Pulse { ramp, duration } => {
+                let rise = |t: f64| Motion::constant([1.0, 0.0], *ramp).velocity_at(t)[0];
+                rise(t) - rise(t - duration)
+            }
         }
     }
 }

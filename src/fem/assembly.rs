@@ -47,6 +47,8 @@ pub struct TractionLoad {
     pub traction: Traction,
     /// The traction rises smoothly from 0 over this time (s); 0 applies it at once.
     pub ramp: f64,
+    /// It acts this long (s), then falls back to 0 over `ramp`; `None`: to the end.
+    pub duration: Option<f64>,
 }
 
 /// The traction of a [`TractionLoad`].
@@ -452,5 +454,9 @@ fn traction_load(load: &TractionLoad, coordinates: &[[f64; 2]], dofs: &Dofs, axi
             }
         }
     }
-    Load { pattern, history: LoadHistory::Ramp { ramp: load.ramp } }
+    let history = match load.duration {
+        None => LoadHistory::Ramp { ramp: load.ramp },
+        Some(duration) => LoadHistory::Pulse { ramp: load.ramp, duration },
+    };
+    Load { pattern, history }
 }
