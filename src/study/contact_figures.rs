@@ -18,7 +18,7 @@ use crate::frame::Quantity;
 use crate::inspect::{Recording, Series};
 use crate::record::colormap::{POSITION, sample};
 use crate::record::schema::{self, RunInfo};
-use crate::study::figures::{HEIGHT, WIDTH, draw_error, tick_label, write_png};
+use crate::study::figures::{HEIGHT, WIDTH, draw_error, recorded_end, register_font, tick_label, write_png};
 
 /// One curve of an xy panel.
 struct Curve {
@@ -41,12 +41,21 @@ pub fn default_times(end: f64) -> Vec<f64> {
     [0.25, 0.5, 0.75, 1.0].iter().map(|f| f * end).collect()
 }
 
-/// Draws both figures of a body's recording into `out` (nothing for a point or spring block,
-/// or a recording without the series they need); returns their paths.
-pub fn write(recording: &Recording, info: &RunInfo, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, String> {
+/// Draws both figures of a body's recording into `out`, the profiles at `times` (s; empty: a
+/// quarter, half, three quarters and the end of the recorded span); nothing for a point or
+/// spring block, or a recording without the series they need. Returns their paths.
+pub fn write(recording: &Recording, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, String> {
+    let Some(info) = recording.static_texts.get(schema::RUN_INFO).and_then(|t| toml::from_str::<RunInfo>(t).ok())
+    else {
+        return Ok(Vec::new());
+    };
     if !info.kind.has_body() {
         return Ok(Vec::new());
     }
+    register_font();
+    std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    let times = if times.is_empty() { default_times(recorded_end(recording)) } else { times.to_vec() };
+    let info = &info;
     let mut written = Vec::new();
     if let (Some(force), Some(drive)) =
         (recording.series.get(schema::FRICTION_FORCE), recording.series.get(schema::BASE_UX))
@@ -57,7 +66,7 @@ pub fn write(recording: &Recording, info: &RunInfo, out: &Path, times: &[f64]) -
     }
     if info.segment_centres.len() == info.recorded_segments.len() && info.segment_centres.len() > 1 {
         let path = out.join(format!("{}_profiles.png", info.case));
-        plot_xy(&path, &profiles(recording, info, times))?;
+        plot_xy(&path, &profiles(recording, info, &times))?;
         written.push(path);
     }
     Ok(written)

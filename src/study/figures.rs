@@ -7,8 +7,8 @@
 //!   time (down), on a log colour scale: how ruptures nucleate and propagate.
 //!
 //! Probes are the case's named nodes and segments; without names, up to six recorded ones
-//! spread along the surface. A body's recording also gets its contacts' force–displacement
-//! curve and profiles along arc length ([`crate::study::contact_figures`]).
+//! spread along the surface. A body's contacts have their own figures,
+//! `crate::study::contact_figures`.
 
 use std::path::{Path, PathBuf};
 use std::sync::Once;
@@ -26,7 +26,7 @@ pub(crate) const HEIGHT: u32 = 800;
 
 /// Registers the embedded DejaVu Sans as the plots' font (plotters' `ab_glyph` backend reads no
 /// system fonts).
-fn register_font() {
+pub(crate) fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
@@ -41,9 +41,8 @@ struct Line<'a> {
     colour: RGBColor,
 }
 
-/// Writes the figures into `out`, the profiles at `times` (s; empty: a quarter, half, three
-/// quarters and the end of the recorded span); returns their paths.
-pub fn write_figures(recording: &Recording, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, String> {
+/// Writes the figures of Figures 8 and 9 and the space-time map into `out`; returns their paths.
+pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, String> {
     register_font();
     let info: RunInfo = recording
         .static_texts
@@ -125,8 +124,6 @@ pub fn write_figures(recording: &Recording, out: &Path, times: &[f64]) -> Result
         plot_spacetime(&spacetime, &info, &rates, end)?;
         written.push(spacetime);
     }
-    let times = if times.is_empty() { crate::study::contact_figures::default_times(end) } else { times.to_vec() };
-    written.extend(crate::study::contact_figures::write(recording, &info, out, &times)?);
     Ok(written)
 }
 
