@@ -18,7 +18,9 @@ use crate::frame::Quantity;
 use crate::inspect::{Recording, Series};
 use crate::record::colormap::{POSITION, sample};
 use crate::record::schema::{self, RunInfo};
-use crate::study::figures::{HEIGHT, WIDTH, draw_error, recorded_end, register_font, tick_label, write_png};
+use crate::study::figures::{
+    HEIGHT, WIDTH, draw_error, draw_lines, recorded_end, register_font, tick_label, write_png,
+};
 
 /// One curve of an xy panel.
 struct Curve {
@@ -188,22 +190,8 @@ fn plot_xy(path: &Path, panels: &[Panel]) -> Result<(), String> {
                 .label_style(("sans-serif", 16))
                 .draw()
                 .map_err(draw_error)?;
-            for curve in &panel.curves {
-                let colour = curve.colour;
-                chart
-                    .draw_series(LineSeries::new(curve.points.iter().copied(), colour.stroke_width(2)))
-                    .map_err(draw_error)?
-                    .label(curve.label.clone())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3)));
-            }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 14))
-                .draw()
-                .map_err(draw_error)?;
+            let curves = panel.curves.iter().map(|c| (c.label.clone(), c.colour, c.points.iter().copied()));
+            draw_lines(&mut chart, curves, SeriesLabelPosition::UpperRight, 14)?;
         }
         root.present().map_err(draw_error)?;
     }

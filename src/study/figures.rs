@@ -13,6 +13,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use crate::frame::Quantity;
@@ -227,29 +228,43 @@ fn plot(path: &Path, panels: &[(&str, &str, &Vec<Line<'_>>)], t_end: f64) -> Res
                 .label_style(("sans-serif", 16))
                 .draw()
                 .map_err(draw_error)?;
-            for line in lines.iter() {
-                let colour = line.colour;
-                chart
-                    .draw_series(LineSeries::new(
-                        line.series.times.iter().copied().zip(line.series.values.iter().copied()),
-                        colour.stroke_width(2),
-                    ))
-                    .map_err(draw_error)?
-                    .label(line.label.clone())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3)));
-            }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperLeft)
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 16))
-                .draw()
-                .map_err(draw_error)?;
+            let curves = lines.iter().map(|line| {
+                let points = line.series.times.iter().copied().zip(line.series.values.iter().copied());
+                (line.label.clone(), line.colour, points)
+            });
+            draw_lines(&mut chart, curves, SeriesLabelPosition::UpperLeft, 16)?;
         }
         root.present().map_err(draw_error)?;
     }
     write_png(path, &pixels)
+}
+
+/// A chart of `f64` against `f64` on a bitmap (`'a` its drawing area's, `'b` its pixels').
+pub(crate) type Chart<'a, 'b> = ChartContext<'a, BitMapBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Draws each `(label, colour, points)` as a line on `chart`, and their legend at `position` in
+/// `font_size` points.
+pub(crate) fn draw_lines<'a, 'b: 'a, P: Iterator<Item = (f64, f64)>>(
+    chart: &mut Chart<'a, 'b>,
+    lines: impl IntoIterator<Item = (String, RGBColor, P)>,
+    position: SeriesLabelPosition,
+    font_size: u32,
+) -> Result<(), String> {
+    for (label, colour, points) in lines {
+        chart
+            .draw_series(LineSeries::new(points, colour.stroke_width(2)))
+            .map_err(draw_error)?
+            .label(label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3)));
+    }
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .label_font(("sans-serif", font_size))
+        .draw()
+        .map_err(draw_error)
 }
 
 pub(crate) fn write_png(path: &Path, pixels: &[u8]) -> Result<(), String> {
