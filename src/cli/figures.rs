@@ -11,7 +11,7 @@ use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, fail, print};
 use crate::inspect;
 use crate::inspect::check::{Expectations, check, check_partial};
 use crate::record::schema::RUN_ENDING;
-use crate::study::figures;
+use crate::study::{contact_figures, figures};
 
 #[derive(Debug, Args)]
 pub struct FiguresArgs {
@@ -72,7 +72,11 @@ pub fn command(args: FiguresArgs) -> ExitCode {
             ),
         );
     }
-    match figures::write_figures(&recording, &args.out, &args.at) {
+    let drawn = figures::write_figures(&recording, &args.out).and_then(|mut paths| {
+        paths.extend(contact_figures::write(&recording, &args.out, &args.at)?);
+        Ok(paths)
+    });
+    match drawn {
         Ok(paths) => {
             let listing: String = paths.iter().map(|path| format!("{}\n", path.display())).collect();
             print(&listing).err().unwrap_or(ExitCode::SUCCESS)

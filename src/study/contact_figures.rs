@@ -18,7 +18,9 @@ use crate::frame::Quantity;
 use crate::inspect::{Recording, Series};
 use crate::record::colormap::{POSITION, sample};
 use crate::record::schema::{self, RunInfo};
-use crate::study::figures::{HEIGHT, WIDTH, draw_error, tick_label, write_png};
+use crate::study::figures::{
+    HEIGHT, WIDTH, draw_error, draw_lines, recorded_end, register_font, tick_label, write_png,
+};
 
 /// One curve of an xy panel.
 struct Curve {
@@ -41,12 +43,21 @@ pub fn default_times(end: f64) -> Vec<f64> {
     [0.25, 0.5, 0.75, 1.0].iter().map(|f| f * end).collect()
 }
 
-/// Draws both figures of a body's recording into `out` (nothing for a point or spring block,
-/// or a recording without the series they need); returns their paths.
-pub fn write(recording: &Recording, info: &RunInfo, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, String> {
+/// Draws both figures of a body's recording into `out`, the profiles at `times` (s; empty: a
+/// quarter, half, three quarters and the end of the recorded span); nothing for a point or
+/// spring block, or a recording without the series they need. Returns their paths.
+pub fn write(recording: &Recording, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, String> {
+    let Some(info) = recording.static_texts.get(schema::RUN_INFO).and_then(|t| toml::from_str::<RunInfo>(t).ok())
+    else {
+        return Ok(Vec::new());
+    };
     if !info.kind.has_body() {
         return Ok(Vec::new());
     }
+    register_font();
+    std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    let times = if times.is_empty() { default_times(recorded_end(recording)) } else { times.to_vec() };
+    let info = &info;
     let mut written = Vec::new();
     if let (Some(force), Some(drive)) =
         (recording.series.get(schema::FRICTION_FORCE), recording.series.get(schema::BASE_UX))
@@ -57,7 +68,7 @@ pub fn write(recording: &Recording, info: &RunInfo, out: &Path, times: &[f64]) -
     }
     if info.segment_centres.len() == info.recorded_segments.len() && info.segment_centres.len() > 1 {
         let path = out.join(format!("{}_profiles.png", info.case));
-        plot_xy(&path, &profiles(recording, info, times))?;
+        plot_xy(&path, &profiles(recording, info, &times))?;
         written.push(path);
     }
     Ok(written)
@@ -179,22 +190,8 @@ fn plot_xy(path: &Path, panels: &[Panel]) -> Result<(), String> {
                 .label_style(("sans-serif", 16))
                 .draw()
                 .map_err(draw_error)?;
-            for curve in &panel.curves {
-                let colour = curve.colour;
-                chart
-                    .draw_series(LineSeries::new(curve.points.iter().copied(), colour.stroke_width(2)))
-                    .map_err(draw_error)?
-                    .label(curve.label.clone())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3)));
-            }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 14))
-                .draw()
-                .map_err(draw_error)?;
+            let curves = panel.curves.iter().map(|c| (c.label.clone(), c.colour, c.points.iter().copied()));
+            draw_lines(&mut chart, curves, SeriesLabelPosition::UpperRight, 14)?;
         }
         root.present().map_err(draw_error)?;
     }

@@ -7,12 +7,13 @@
 //!   time (down), on a log colour scale: how ruptures nucleate and propagate.
 //!
 //! Probes are the case's named nodes and segments; without names, up to six recorded ones
-//! spread along the surface. A body's recording also gets its contacts' force–displacement
-//! curve and profiles along arc length ([`crate::study::contact_figures`]).
+//! spread along the surface. A body's contacts have their own figures,
+//! `crate::study::contact_figures`.
 
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use crate::frame::Quantity;
@@ -26,7 +27,7 @@ pub(crate) const HEIGHT: u32 = 800;
 
 /// Registers the embedded DejaVu Sans as the plots' font (plotters' `ab_glyph` backend reads no
 /// system fonts).
-fn register_font() {
+pub(crate) fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
@@ -41,9 +42,8 @@ struct Line<'a> {
     colour: RGBColor,
 }
 
-/// Writes the figures into `out`, the profiles at `times` (s; empty: a quarter, half, three
-/// quarters and the end of the recorded span); returns their paths.
-pub fn write_figures(recording: &Recording, out: &Path, times: &[f64]) -> Result<Vec<PathBuf>, String> {
+/// Writes the figures of Figures 8 and 9 and the space-time map into `out`; returns their paths.
+pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, String> {
     register_font();
     let info: RunInfo = recording
         .static_texts
@@ -125,8 +125,6 @@ pub fn write_figures(recording: &Recording, out: &Path, times: &[f64]) -> Result
         plot_spacetime(&spacetime, &info, &rates, end)?;
         written.push(spacetime);
     }
-    let times = if times.is_empty() { crate::study::contact_figures::default_times(end) } else { times.to_vec() };
-    written.extend(crate::study::contact_figures::write(recording, &info, out, &times)?);
     Ok(written)
 }
 
@@ -230,29 +228,43 @@ fn plot(path: &Path, panels: &[(&str, &str, &Vec<Line<'_>>)], t_end: f64) -> Res
                 .label_style(("sans-serif", 16))
                 .draw()
                 .map_err(draw_error)?;
-            for line in lines.iter() {
-                let colour = line.colour;
-                chart
-                    .draw_series(LineSeries::new(
-                        line.series.times.iter().copied().zip(line.series.values.iter().copied()),
-                        colour.stroke_width(2),
-                    ))
-                    .map_err(draw_error)?
-                    .label(line.label.clone())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3)));
-            }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperLeft)
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 16))
-                .draw()
-                .map_err(draw_error)?;
+            let curves = lines.iter().map(|line| {
+                let points = line.series.times.iter().copied().zip(line.series.values.iter().copied());
+                (line.label.clone(), line.colour, points)
+            });
+            draw_lines(&mut chart, curves, SeriesLabelPosition::UpperLeft, 16)?;
         }
         root.present().map_err(draw_error)?;
     }
     write_png(path, &pixels)
+}
+
+/// A chart of `f64` against `f64` on a bitmap (`'a` its drawing area's, `'b` its pixels').
+pub(crate) type Chart<'a, 'b> = ChartContext<'a, BitMapBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Draws each `(label, colour, points)` as a line on `chart`, and their legend at `position` in
+/// `font_size` points.
+pub(crate) fn draw_lines<'a, 'b: 'a, P: Iterator<Item = (f64, f64)>>(
+    chart: &mut Chart<'a, 'b>,
+    lines: impl IntoIterator<Item = (String, RGBColor, P)>,
+    position: SeriesLabelPosition,
+    font_size: u32,
+) -> Result<(), String> {
+    for (label, colour, points) in lines {
+        chart
+            .draw_series(LineSeries::new(points, colour.stroke_width(2)))
+            .map_err(draw_error)?
+            .label(label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3)));
+    }
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .label_font(("sans-serif", font_size))
+        .draw()
+        .map_err(draw_error)
 }
 
 pub(crate) fn write_png(path: &Path, pixels: &[u8]) -> Result<(), String> {
