@@ -450,7 +450,7 @@ fn a_block_thrown_off_its_base_lands_again() {
         &(INCLINE
             .replace("gravity = [3.643343, -9.108356]", "gravity = [0.0, -9.81]")
             .replace("base_phases = [{ velocity = 0.0, duration = 0.5 }, { velocity = -1.0 }]", "")
-                        .replace("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e8")
+            .replace("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e8")
             + "\n[[scene.boundaries]]\ngroup = \"top\"\ntraction = [0.0, 19620.0]\nramp_time = 0.01\nduration = 0.05\n"),
         &["time.integrator=\"wilson\"", "time.dt=1e-4", "time.t_end=0.6"],
     );
