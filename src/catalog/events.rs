@@ -165,7 +165,7 @@ impl EventDetector {
     /// The same detector also finding openings, for segments of `lengths` (m) along contacts
     /// whose normal traction evolves ([`crate::catalog::openings`]).
     pub fn with_openings(mut self, lengths: Vec<f64>) -> Self {
-        self.openings = OpeningDetector::new(lengths, self.contacts.clone());
+        self.openings = OpeningDetector::new(lengths);
         self
     }
 

@@ -66,8 +66,9 @@ pub enum Problem {
     Point,
     /// A body of `unknowns` (a rigid block has one), whose healing relaxes `1/R*` at the rate
     /// `γ ξ n μ_k/μ_s` (1/s; eq. 4 linearized, `n` at least 1): `healing` is that rate times
-    /// `dt`, the number of healing times in a step.
-    Body { unknowns: usize, healing: f64 },
+    /// `dt`, the number of healing times in a step; `evolving`: some contact's normal traction
+    /// evolves.
+    Body { unknowns: usize, healing: f64, evolving: bool },
 }
 
 /// The most unknowns of a body that `auto` gives to Tsitouras' pair; larger bodies get central
@@ -86,7 +87,7 @@ pub fn choose(problem: Problem) -> (Method, String) {
         Problem::Point => {
             (Method::Wilson, "a point scene prescribes its motion; Wilson's implicit friction update is its own".into())
         }
-        Problem::Body { unknowns, healing } if unknowns <= AUTO_PAIR_UNKNOWNS && healing > 1.0 => (
+        Problem::Body { unknowns, healing, .. } if unknowns <= AUTO_PAIR_UNKNOWNS && healing > 1.0 => (
             Method::Wilson,
             format!(
                 "a body of {unknowns} unknown{} whose healing time (1/(ξ n μ_k/μ_s)) is {} times shorter than \
@@ -102,6 +103,15 @@ pub fn choose(problem: Problem) -> (Method, String) {
                 "a body of {unknowns} unknown{} (at most {AUTO_PAIR_UNKNOWNS}): Tsitouras' adaptive pair is the \
                  fastest at the accuracy asked",
                 if unknowns == 1 { "" } else { "s" }
+            ),
+        ),
+        Problem::Body { unknowns, evolving: true, .. } => (
+            Method::Wilson,
+            format!(
+                "a body of {unknowns} unknowns (more than {AUTO_PAIR_UNKNOWNS}) whose contact's normal traction \
+                 evolves: central differences do not damp a stiff contact's chatter as it closes, where Wilson's θ \
+                 does (cases/cylinder_on_base.toml: 1758 openings and closings of its segments in 1.2 s against \
+                 130, in 34 s against 22 s)"
             ),
         ),
         Problem::Body { unknowns, .. } => (

@@ -122,11 +122,7 @@ pub fn openings_csv(openings: &[Opening]) -> String {
     let mut out = String::from(OPENINGS_HEADER);
     out.push('\n');
     for o in openings {
-        let _ = writeln!(
-            out,
-            "{},{},{},{},{},{},{}",
-            o.contact, o.onset, o.end, o.closed, o.first_segment, o.last_segment, o.largest_length
-        );
+        let _ = writeln!(out, "{},{},{},{},{}", o.segment, o.onset, o.end, o.closed, o.length);
     }
     out
 }
