@@ -100,6 +100,13 @@ pub struct Layout {
     /// Runge–Kutta integrator's `Λ`) rather than means `Δp/Δt` over the step that led to it.
     #[serde(default)]
     pub instantaneous_slip_rate: bool,
+    /// Whether the body is a ring about the y axis (x the radius): its contact forces are
+    /// totals around the circumference, in N rather than N per unit thickness.
+    #[serde(default)]
+    pub axisymmetric: bool,
+    /// Whether some contact's normal traction evolves, so that a segment can be open.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub evolving_normal: bool,
 }
 
 /// One contact of a body.
@@ -114,6 +121,12 @@ pub struct ContactInfo {
 }
 
 impl Layout {
+    /// Unit of the total friction force: N around a ring, N/m per unit thickness of a plane
+    /// body, Pa per unit area of a point or spring block.
+    pub fn force_unit(&self) -> &'static str {
+        if self.axisymmetric { "N" } else { self.kind.force_unit() }
+    }
+
     /// The contacts, with the segment and node ranges each holds: [`Self::contacts`], or one
     /// contact holding everything.
     pub fn contact_ranges(&self) -> Vec<(String, std::ops::Range<usize>, std::ops::Range<usize>)> {
@@ -200,6 +213,9 @@ pub struct SegmentSample {
     pub slip_rate: f64,
     /// Accumulated plastic slip `p` (m).
     pub slip: f64,
+    /// Whether the segment is open: its contact's normal traction evolves and has fallen to 0
+    /// at every one of its points.
+    pub open: bool,
 }
 
 /// Everything a sink may observe after a step (or at `t = 0`).
@@ -215,12 +231,14 @@ pub struct Frame {
     pub surface_nodes: Vec<[f64; 2]>,
     /// `(u_x, u_y)` of every node the drawing uses ([`MeshDrawing::nodes`], m), when needed.
     pub mesh: Vec<[f64; 2]>,
-    /// Total friction force `Σ w f_t` (N/m for a block, Pa for unit-area scenes).
+    /// Total friction force `Σ w f_t` (N/m for a plane body, N around an axisymmetric one, Pa
+    /// for unit-area scenes).
     pub friction_force: f64,
     /// Each contact's own `Σ w f_t` where the body has several (its tractions along its own
     /// tangent); empty where it has one.
     pub contact_forces: Vec<f64>,
-    /// Displacement of the base (m); for a spring-block, of the spring's far end.
+    /// Displacement of the base (m); for a spring-block, of the spring's far end; for a mesh,
+    /// of its first contact's main body along its drive.
     pub base_displacement: f64,
     /// Block displacement and velocity (spring-block scenes).
     pub block: Option<[f64; 2]>,

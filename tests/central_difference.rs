@@ -7,8 +7,8 @@ mod common;
 
 use common::traction_errors_against_tsit5;
 use nalgebra::{DMatrix, SymmetricEigen};
-use slipfront::dynamics::Motion;
 use slipfront::dynamics::central::highest_frequency;
+use slipfront::dynamics::{Motion, NormalBehaviour};
 use slipfront::fem::{Assembled, Material, PlaneStrain};
 use slipfront::friction::FrictionParams;
 use slipfront::scene::block::block;
@@ -22,7 +22,8 @@ fn lanczos_finds_the_highest_frequency_of_a_dense_eigensolver() {
     let params = FrictionParams::paper();
     let alpha_t = params.alpha_t;
     let base = Motion::constant([1e-3, 0.0], 10.0);
-    let Assembled { body, contact, .. } = block(10.0, 1.0, 30, 6, material, params, &|_| 500.0, base);
+    let Assembled { body, contact, .. } =
+        block(10.0, 1.0, 30, 6, material, params, (&|_| 500.0, NormalBehaviour::Held), base);
     let n = body.dofs();
     let mut dense = DMatrix::<f64>::zeros(n, n);
     for (i, j, v) in body.stiffness.entries() {

@@ -484,3 +484,50 @@ fn hostile_files() {
     let twice = write("twice.toml", format!("{text}\n[time]\ndt = 1\n").as_bytes());
     expect_invalid(&twice, &[], "TOML parse error");
 }
+
+/// Gravity and axisymmetry belong to a mesh; a lithostatic normal traction needs its level and
+/// a coefficient that is not negative; an axisymmetric mesh lies in `x >= 0`; a weight the
+/// contacts cannot hold stuck is refused before the run. Each names the key and what is allowed.
+#[test]
+fn axisymmetry_gravity_and_lithostatic_rules() {
+    let mesh_only = "applies to a body drawn as a mesh (kind = \"mesh\")";
+    expect_invalid(
+        &case("spring_block.toml"),
+        &["scene.gravity=[0.0, -9.81]"],
+        &format!("scene.gravity: {mesh_only}; a spring_block scene has no body to weigh or revolve"),
+    );
+    expect_invalid(
+        &case("point_loading.toml"),
+        &["scene.axisymmetric=true"],
+        &format!("scene.axisymmetric: {mesh_only}; a point scene has no body to weigh or revolve"),
+    );
+    expect_invalid(
+        &case("paper_triangular.toml"),
+        &["scene.gravity=[0.0, -9.81]"],
+        &format!("scene.gravity: {mesh_only}; a block scene is the paper's plane-strain block, weightless"),
+    );
+    let pile = case("pile_pullout.toml");
+    expect_invalid(
+        &pile,
+        &["scene.contacts.0.normal_traction={kind=\"lithostatic\", unit_weight=17658.0, coefficient=0.5}"],
+        "scene.contacts[0].normal_traction.level = none is needed: the height y (m) of the surface that depth is \
+         measured down from",
+    );
+    expect_invalid(
+        &pile,
+        &["scene.contacts.0.normal_traction.coefficient=-0.5"],
+        "scene.contacts[0].normal_traction.coefficient = -0.5 must not be negative: K is 1 under a horizontal \
+         surface and K0",
+    );
+    let rotated = format!("scene.file=\"{}/tests/meshes/block_rotated.msh\"", env!("CARGO_MANIFEST_DIR"));
+    expect_invalid(
+        &case("paper_mesh.toml"),
+        &[&rotated, "scene.axisymmetric=true"],
+        "scene.axisymmetric = true needs every node at r = x >= 0: the mesh crosses the axis x = 0",
+    );
+    expect_invalid(
+        &case("fault_at_depth.toml"),
+        &["scene.gravity=[0.0, -9.81]"],
+        "scene.gravity = [0, -9.81] m/s² loads contact \"fault\" beyond its static strength before anything moves",
+    );
+}

@@ -70,6 +70,24 @@ const LISTED: &[(&str, &[(&str, How)])] = &[
         ],
     ),
     (
+        "docs/applications.md",
+        &[
+            ("slipfront run cases/pile_pullout.toml", Run),
+            ("slipfront figures recordings/pile_pullout.rrd --at 0.65,1.5,2.5,3.5,5,30", Run),
+            ("slipfront run cases/fault_at_depth.toml", Run),
+            ("slipfront figures recordings/fault_at_depth.rrd --at 400,560,850,856,862", Run),
+            ("slipfront study cases/studies/fault_ensemble.toml", Shortened("--shard 1/16")),
+            (
+                "python3 scripts/fault_depth_bins.py recordings/fault_ensemble/events.csv",
+                Mirror(concat!(
+                    "python3 ",
+                    env!("CARGO_MANIFEST_DIR"),
+                    "/scripts/fault_depth_bins.py recordings/fault_ensemble/events.csv"
+                )),
+            ),
+        ],
+    ),
+    (
         "docs/cases.md",
         &[(
             "slipfront: cases/spring_block.toml: friction.mu_k = 0.5 must be less than friction.mu_s = 0.4",

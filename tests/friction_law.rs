@@ -150,11 +150,12 @@ fn healing_in_stick_follows_the_closed_form() {
 fn point_history() -> PointSpec {
     PointSpec {
         normal_traction: 1000.0,
+        normal: Default::default(),
         phases: vec![
-            Phase { velocity: -1e-3, duration: 200.0 },
-            Phase { velocity: 1e-3, duration: 0.2 },
-            Phase { velocity: 0.0, duration: 100.0 },
-            Phase { velocity: -1e-3, duration: 99.8 },
+            Phase { velocity: -1e-3, duration: 200.0, normal_velocity: 0.0 },
+            Phase { velocity: 1e-3, duration: 0.2, normal_velocity: 0.0 },
+            Phase { velocity: 0.0, duration: 100.0, normal_velocity: 0.0 },
+            Phase { velocity: -1e-3, duration: 99.8, normal_velocity: 0.0 },
         ],
     }
 }
@@ -280,7 +281,7 @@ fn rate_form_partials_match_finite_differences() {
                 };
                 let v = direction * v;
                 let at = |f: f64, z: f64, v: f64| {
-                    law::tangential_rate(&params, &ContactState { traction_t: f, structure: z, ..state }, v)
+                    law::tangential_rate(&params, &ContactState { traction_t: f, structure: z, ..state }, v, 0.0)
                 };
                 let r = at(state.traction_t, structure, v);
                 assert!(r.plastic_multiplier > 0.0, "a loading state: {r:?}");

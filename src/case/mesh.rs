@@ -9,8 +9,9 @@ use std::sync::Arc;
 use serde::Deserialize;
 
 use crate::case::profile::ProfileSpec;
-use crate::dynamics::{MainBody, Motion};
+use crate::dynamics::{MainBody, Motion, NormalBehaviour};
 use crate::fem::curve::{CurvePoint, segments};
+use crate::fem::equilibrium::{Equilibrium, under_gravity};
 use crate::fem::{
     BodyDefinition, Constraint, ContactDefinition, Material, Members, Mesh, PlaneStrain, Traction, TractionLoad,
 };
@@ -31,6 +32,13 @@ pub struct MeshSpec {
     pub boundaries: Vec<BoundarySpec>,
     /// `[[scene.contacts]]`: the frictional contacts (`S_c`).
     pub contacts: Vec<ContactSpec>,
+    /// The mesh is the half-plane `r = x ≥ 0`, `z = y` of a body of revolution about the y
+    /// axis ([`crate::fem::axisymmetric`]); forces are then in N. Default false: plane strain.
+    #[serde(default)]
+    pub axisymmetric: bool,
+    /// The acceleration of gravity `[gx, gy]` (m/s²): the body starts in static equilibrium
+    /// under its weight with its contacts stuck ([`crate::fem::equilibrium`]). Default none.
+    pub gravity: Option<[f64; 2]>,
     /// The mesh and what the case's names resolve to, once loaded ([`MeshSpec::load`]).
     #[serde(skip)]
     pub loaded: Option<Arc<LoadedMesh>>,
@@ -112,6 +120,9 @@ pub struct BoundarySpec {
     /// default 0: at once.
     #[serde(default)]
     pub ramp_time: f64,
+    /// A traction or pressure acts this long (s), then falls back to 0 over `ramp_time`;
+    /// default: to the end.
+    pub duration: Option<f64>,
 }
 
 /// `[[scene.contacts]]`.
@@ -128,8 +139,13 @@ pub struct ContactSpec {
     /// Every change of the main body's velocity is spread over this time (s); default 0.
     #[serde(default)]
     pub base_ramp_time: f64,
-    /// The normal traction along the contact, held constant (Pa).
+    /// The normal traction along the contact (Pa): held constant, or its initial value.
     pub normal_traction: ProfileSpec,
+    /// `"held"` (default) or `"evolving"`: whether `f_n` follows `ḟ_n = -α_n v̄_n`.
+    #[serde(default)]
+    pub normal: NormalBehaviour,
+    /// The initial normal gap (m) of an evolving contact, where it does not yet touch.
+    pub gap: Option<ProfileSpec>,
     /// This contact's friction constants where they differ from `[friction]`.
     pub friction: Option<toml::Table>,
 }
@@ -149,6 +165,8 @@ pub struct LoadedMesh {
     /// Each contact's chain, and its friction constants.
     pub contact_chains: Vec<Vec<usize>>,
     pub contact_params: Vec<FrictionParams>,
+    /// The static equilibrium under `gravity`, every contact stuck; `None` without gravity.
+    pub equilibrium: Option<Equilibrium>,
 }
 
 /// Left out of a case's `Debug` form, which names the run: the file's digest stands for the
@@ -227,6 +245,18 @@ impl BoundarySpec {
             return;
         }
         c.non_negative("ramp_time", self.ramp_time);
+        if let Some(duration) = self.duration {
+            if self.traction.is_none() && self.pressure.is_none() {
+                c.fail("duration", duration, "applies to a traction or a pressure only");
+            } else if !(duration.is_finite() && duration >= self.ramp_time && duration > 0.0) {
+                let rule = format!(
+                    "must be finite, positive and at least {} = {} (the load rises over it)",
+                    c.key("ramp_time"),
+                    self.ramp_time
+                );
+                c.fail("duration", duration, rule);
+            }
+        }
         let velocities: Vec<VelocitySpec> =
             self.velocity.into_iter().chain(self.phases.iter().flatten().map(|p| p.velocity)).collect();
         if let (true, Some(components)) = (velocities.is_empty(), self.components) {
@@ -317,6 +347,24 @@ impl ContactSpec {
         let mut traction = Checker::new(&prefix);
         self.normal_traction.check(&mut traction);
         c.absorb(traction);
+        if let Some(gap) = &self.gap {
+            if self.normal != NormalBehaviour::Evolving {
+                let rule = format!("needs {} = \"evolving\": a held contact has no gap", c.key("normal"));
+                c.fail("gap", "{...}", rule);
+            }
+            let prefix = c.key("gap");
+            let mut checker = Checker::new(&prefix);
+            gap.check(&mut checker);
+            c.absorb(checker);
+        }
+        if self.normal == NormalBehaviour::Evolving && !velocities.iter().all(|v| v.is_scalar()) {
+            c.fail(
+                "base_velocity",
+                "[vx, vy]",
+                "of an evolving contact must be a number, a speed along the contact: its main body does not press \
+                 it or pull away along its normal",
+            );
+        }
     }
 }
 
@@ -364,6 +412,11 @@ impl MeshSpec {
             contact.check(&mut inner);
             c.absorb(inner);
         }
+        if let Some(g) = self.gravity {
+            for (i, v) in g.iter().enumerate() {
+                c.finite(&format!("gravity[{i}]"), *v);
+            }
+        }
     }
 
     /// The mesh as loaded; panics before [`Self::load`].
@@ -378,6 +431,9 @@ impl MeshSpec {
         let path = dir.join(&self.file);
         let (mesh, digest) = crate::fem::gmsh::read_with_digest(&path).map_err(|e| e.to_string())?;
         let mut c = Checker::new("scene");
+        if self.axisymmetric {
+            check_half_plane(&mesh, &mut c);
+        }
         let cell_material = self.cell_materials(&mesh, &mut c);
         let mut boundary_nodes = Vec::new();
         let mut boundary_chains = Vec::new();
@@ -406,13 +462,78 @@ impl MeshSpec {
             boundary_chains: boundary_chains.into_iter().collect(),
             contact_chains,
             contact_params: contact_params.into_iter().map(|p| p.expect("checked above")).collect(),
+            equilibrium: None,
         };
+        let mut loaded = loaded;
         self.check_contacts(&loaded, &mut c);
         if let Err(e) = crate::fem::assembly::check(&self.definition(&loaded)) {
             c.fail("boundaries", "[...]", e.0);
         }
+        if c.violations.is_empty() && self.gravity.is_some() {
+            loaded.equilibrium = self.settle(&loaded, &mut c);
+        }
         self.loaded = Some(Arc::new(loaded));
         Ok(c.violations)
+    }
+
+    /// The static equilibrium under gravity ([`crate::fem::equilibrium`]), refused where the
+    /// body is not held, where a contact point would have to carry more than its static
+    /// strength `μ_k (1/R*₀) f_n` to start stuck, or where an evolving contact would start in
+    /// tension or with a gap closed.
+    fn settle(&self, loaded: &LoadedMesh, c: &mut Checker<'_>) -> Option<Equilibrium> {
+        let g = self.gravity.unwrap_or_default();
+        let value = format!("[{}, {}]", shortest(g[0]), shortest(g[1]));
+        let assembled = match crate::fem::assemble(&self.definition(loaded)) {
+            Ok(assembled) => assembled,
+            Err(e) => {
+                c.fail("boundaries", "[...]", e.0);
+                return None;
+            }
+        };
+        let equilibrium = match under_gravity(&assembled)? {
+            Ok(equilibrium) => equilibrium,
+            Err(e) => {
+                c.fail("gravity", value.as_str(), e);
+                return None;
+            }
+        };
+        let contact = &assembled.contact;
+        for (k, point) in contact.points.iter().enumerate() {
+            let params = contact.params(k);
+            let f_n = initial_normal_traction(contact, &equilibrium, k);
+            if contact.evolves(k) {
+                let name = &self.contacts[point.surface].group;
+                let closing =
+                    contact.gap[k] > 0.0 && contact.gap[k] + point.normal.apply(&equilibrium.displacement) < 0.0;
+                if (contact.gap[k] <= 0.0 && f_n <= 0.0) || closing {
+                    let rule = format!(
+                        "m/s² {} the evolving contact {name:?} at a contact point where its normal traction would be \
+                         {:.1} Pa: the body at rest under its weight must press every point it starts touching and \
+                         leave every gap open; press the contact (its normal_traction) or hold the body by a boundary",
+                        if closing { "closes a gap of" } else { "lifts the body off" },
+                        f_n
+                    );
+                    c.fail("gravity", value.as_str(), rule);
+                    return None;
+                }
+            }
+            let strength = params.mu_k * params.initial_structure() * f_n;
+            let f_t = equilibrium.traction_t[k] + params.f0 * point.loading_direction;
+            if f_n > 0.0 && f_t.abs() > strength {
+                let name = &self.contacts[point.surface].group;
+                let rule = format!(
+                    "m/s² loads contact {name:?} beyond its static strength before anything moves: the body at \
+                     rest on it needs |f_t| = {:.1} Pa at a contact point where mu_k (1/R*) f_n = {:.1} Pa (f_n = \
+                     {:.1} Pa); raise the contact's normal traction or its friction, or hold the body by a boundary",
+                    f_t.abs(),
+                    strength,
+                    f_n
+                );
+                c.fail("gravity", value.as_str(), rule);
+                return None;
+            }
+        }
+        Some(equilibrium)
     }
 
     /// Each cell's material: every cell in exactly one material group.
@@ -498,6 +619,26 @@ impl MeshSpec {
                 c.fail(&key, format!("{} Pa", shortest(*v)), format!("at the contact point ({}, {}) (arc length {} m): a normal traction must be finite and not negative", shortest(p.x), shortest(p.y), shortest(p.arc)));
                 continue;
             }
+            if let Some(gap) = &contact.gap {
+                let gaps: Vec<(&CurvePoint, f64, f64)> =
+                    points.iter().zip(&values).map(|(p, v)| (p, gap.at(*p), *v)).collect();
+                if let Some((p, g, _)) = gaps.iter().find(|(_, g, _)| !(g.is_finite() && *g >= 0.0)) {
+                    c.fail(
+                        &format!("contacts[{i}].gap"),
+                        format!("{} m", shortest(*g)),
+                        format!(
+                            "at the contact point ({}, {}): a gap must be finite and not negative",
+                            shortest(p.x),
+                            shortest(p.y)
+                        ),
+                    );
+                    continue;
+                }
+                if let Some((p, g, v)) = gaps.iter().find(|(_, g, v)| *g > 0.0 && *v > 0.0) {
+                    c.fail(&format!("contacts[{i}].gap"), format!("{} m", shortest(*g)), format!("at the contact point ({}, {}), where the normal traction is {} Pa: a point is pressed (gap 0) or open (normal traction 0), not both", shortest(p.x), shortest(p.y), shortest(*v)));
+                    continue;
+                }
+            }
             let params = &loaded.contact_params[i];
             let weakest = values.iter().copied().filter(|v| *v > 0.0).fold(f64::INFINITY, f64::min);
             let strength = params.mu_k * params.initial_structure() * weakest;
@@ -519,7 +660,7 @@ impl MeshSpec {
                 (None, Some(p)) => Traction::Pressure(p),
                 (None, None) => return None,
             };
-            Some(TractionLoad { chain: chain.clone()?, traction, ramp: b.ramp_time })
+            Some(TractionLoad { chain: chain.clone()?, traction, ramp: b.ramp_time, duration: b.duration })
         });
         let contacts = self.contacts.iter().zip(&loaded.contact_chains).zip(&loaded.contact_params).map(
             |((contact, chain), params)| ContactDefinition {
@@ -528,6 +669,11 @@ impl MeshSpec {
                 params: params.clone(),
                 main_body: contact.main_body(),
                 normal_traction: Box::new(move |p: CurvePoint| contact.normal_traction.at(p)),
+                normal: contact.normal,
+                gap: contact
+                    .gap
+                    .as_ref()
+                    .map(|gap| Box::new(move |p: CurvePoint| gap.at(p)) as Box<dyn Fn(CurvePoint) -> f64>),
             },
         );
         BodyDefinition {
@@ -536,6 +682,8 @@ impl MeshSpec {
             constraints: constraints.collect(),
             tractions: tractions.collect(),
             contacts: contacts.collect(),
+            axisymmetric: self.axisymmetric,
+            gravity: self.gravity,
         }
     }
 
@@ -557,6 +705,22 @@ impl MeshSpec {
             let segments: usize = l.contact_chains.iter().map(|c| c.len().saturating_sub(1)).sum();
             (l.contact_chains.iter().map(Vec::len).sum(), segments)
         })
+    }
+}
+
+/// An axisymmetric mesh lies in the half-plane `r = x ≥ 0`: a node at `x < 0` would put the
+/// body across its own axis.
+fn check_half_plane(mesh: &Mesh, c: &mut Checker<'_>) {
+    if let Some(i) = (0..mesh.nodes.len()).find(|&i| mesh.nodes[i][0] < 0.0) {
+        let [x, y] = mesh.nodes[i];
+        let rule = format!(
+            "needs every node at r = x >= 0: the mesh crosses the axis x = 0 ({} at ({}, {})); an axisymmetric \
+             body is meshed in the half-plane x >= 0, its axis along y",
+            mesh.node_label(i),
+            shortest(x),
+            shortest(y)
+        );
+        c.fail("axisymmetric", "true", rule);
     }
 }
 
@@ -615,6 +779,16 @@ fn chain(mesh: &Mesh, name: &str, key: &str, c: &mut Checker<'_>) -> Option<Vec<
             c.fail(key, format!("{name:?}"), format!("is not one open chain of boundary edges: {e}"));
             None
         }
+    }
+}
+
+/// Contact point `k`'s normal traction at the start: the prescribed one, and on an evolving
+/// contact also the share of the weight its normal spring carries in `equilibrium`.
+pub fn initial_normal_traction(contact: &crate::dynamics::ContactBoundary, equilibrium: &Equilibrium, k: usize) -> f64 {
+    if contact.evolves(k) && contact.gap[k] <= 0.0 {
+        contact.traction_n[k] + equilibrium.traction_n[k]
+    } else {
+        contact.traction_n[k]
     }
 }
 

@@ -193,7 +193,7 @@ impl Case {
         let healing = p.rstar_scale() * p.xi * p.n.max(1.0) * p.kinetic_static_ratio() * self.time.dt;
         match self.scene.unknowns() {
             None => Problem::Point,
-            Some(unknowns) => Problem::Body { unknowns, healing },
+            Some(unknowns) => Problem::Body { unknowns, healing, evolving: self.scene.has_evolving_normal() },
         }
     }
 
@@ -238,7 +238,6 @@ impl Case {
             dt_max: time.dt_max(),
             dt_min: time.dt_min(),
             slip_rate_threshold: self.slip_rate_threshold(),
-            span: time.t_end,
         }
     }
 }

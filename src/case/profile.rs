@@ -1,5 +1,6 @@
 //! A value that varies along a contact (its normal traction): uniform, linear, or piecewise
-//! linear through a table, in the contact's arc length or in x or y.
+//! linear through a table, in the contact's arc length or in x or y; or lithostatic,
+//! `K γ depth` below a level.
 
 use serde::Deserialize;
 
@@ -37,6 +38,21 @@ pub enum ProfileSpec {
     Linear { along: Along, at: [f64; 2], value: [f64; 2] },
     /// Piecewise linear through `(at[i], value[i])`, `at` increasing and covering the contact.
     Table { along: Along, at: Vec<f64>, value: Vec<f64> },
+    /// Lithostatic: `K γ (level - y)` below `level`, 0 above it (y upward).
+    Lithostatic {
+        /// The height `y` of the free surface depth is measured from (m); required.
+        level: Option<f64>,
+        /// The unit weight `γ` of what lies above (N/m³).
+        unit_weight: f64,
+        /// `K`: 1 under a horizontal surface, `K0` (the earth pressure at rest) on a vertical
+        /// shaft; default 1.
+        #[serde(default = "one")]
+        coefficient: f64,
+    },
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 impl ProfileSpec {
@@ -46,6 +62,9 @@ impl ProfileSpec {
             ProfileSpec::Uniform { value } => *value,
             ProfileSpec::Linear { along, at, value } => linear(along.of(point), *at, *value),
             ProfileSpec::Table { along, at, value } => table(along.of(point), at, value),
+            ProfileSpec::Lithostatic { level, unit_weight, coefficient } => {
+                lithostatic(point.y, level.unwrap_or(f64::NAN), *unit_weight, *coefficient)
+            }
         }
     }
 
@@ -76,6 +95,28 @@ impl ProfileSpec {
                     c.fail("at", format!("{at:?}"), "must be finite and strictly increasing");
                 }
             }
+            ProfileSpec::Lithostatic { level, unit_weight, coefficient } => {
+                match level {
+                    Some(level) => {
+                        c.finite("level", *level);
+                    }
+                    None => c.fail(
+                        "level",
+                        "none",
+                        "is needed: the height y (m) of the surface that depth is measured down from (f_n = \
+                         coefficient × unit_weight × (level - y) below it, 0 above)",
+                    ),
+                }
+                c.non_negative("unit_weight", *unit_weight);
+                if c.finite("coefficient", *coefficient) && *coefficient < 0.0 {
+                    c.fail(
+                        "coefficient",
+                        *coefficient,
+                        "must not be negative: K is 1 under a horizontal surface and K0 (about 0.4 to 0.6 in \
+                         sand) on a vertical shaft",
+                    );
+                }
+            }
         }
     }
 
@@ -86,6 +127,11 @@ impl ProfileSpec {
             _ => None,
         }
     }
+}
+
+/// The lithostatic stress `K γ (level - y)` at height `y` below `level`, 0 above it.
+pub fn lithostatic(y: f64, level: f64, unit_weight: f64, coefficient: f64) -> f64 {
+    coefficient * unit_weight * (level - y).max(0.0)
 }
 
 /// The straight line through `(at[0], value[0])` and `(at[1], value[1])` at `s`:

@@ -4,6 +4,7 @@ use serde::Deserialize;
 
 use crate::case::mesh::MeshSpec;
 use crate::case::profile;
+use crate::dynamics::NormalBehaviour;
 use crate::dynamics::method::{ACCURACY_RANGE, Choice, MAX_STEPS, Method};
 use crate::frame::Quantity;
 use crate::friction::FrictionParams;
@@ -70,7 +71,7 @@ pub struct TimeSpec {
     /// step ([`crate::dynamics::method`] has their defaults).
     #[serde(default)]
     pub tolerance: Option<f64>,
-    /// Largest adaptive step (s); `t_end / 100` by default.
+    /// Largest adaptive step (s); 1000 × `dt` by default ([`DT_MAX_PER_DT`]).
     #[serde(default)]
     pub dt_max: Option<f64>,
     /// The time integrator of dynamic scenes as the case asks for it: `auto` (the default),
@@ -191,9 +192,10 @@ impl TimeSpec {
         self.method.guards_energy().then_some(self.energy_tolerance)
     }
 
-    /// Largest adaptive step (s).
+    /// Largest adaptive step (s): as given, or [`DT_MAX_PER_DT`] times `dt`. Never derived
+    /// from `t_end`, so that no step depends on when the run ends.
     pub fn dt_max(&self) -> f64 {
-        self.dt_max.unwrap_or(self.t_end / 100.0)
+        self.dt_max.unwrap_or(DT_MAX_PER_DT * self.dt)
     }
 
     /// Smallest adaptive step (s) ([`Method::dt_min`]).
@@ -206,6 +208,13 @@ impl TimeSpec {
         (self.t_end / self.dt - 1e-9).ceil().max(1.0) as u64
     }
 }
+
+/// The largest adaptive step when `time.dt_max` is not given, in steps of `dt`: 10 s for the
+/// paper's dt = 0.01 s. Step doubling needs a bound (it grows Wilson's steps through stick until
+/// they miss the dynamics: the paper case at tolerance 1e-5 without one fails at 316 s, in its
+/// 31st step); the Runge–Kutta methods' steps stay far below it (SDIRK4's 0.35 s at most on the
+/// paper case).
+pub const DT_MAX_PER_DT: f64 = 1000.0;
 
 /// Marks an error from inside `[scene]` whose message starts with its own key path, so that
 /// the case's error says `scene.nx: ...` (see [`crate::case`]).
@@ -226,6 +235,17 @@ fn scene_spec<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<Scene
         }
         None => return Err(D::Error::missing_field("kind")),
     };
+    for key in ["gravity", "axisymmetric"] {
+        if kind != "mesh" && table.contains_key(key) {
+            let why = match kind.as_str() {
+                "point" | "spring_block" => "has no body to weigh or revolve",
+                _ => "is the paper's plane-strain block, weightless (pose it as a mesh, as cases/paper_mesh.toml does)",
+            };
+            return Err(D::Error::custom(format!(
+                "{NESTED_KEY}{key}: applies to a body drawn as a mesh (kind = \"mesh\"); a {kind} scene {why}"
+            )));
+        }
+    }
     let tracked = |table: toml::Table| {
         fn read<T: serde::de::DeserializeOwned>(table: toml::Table) -> Result<T, String> {
             serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
@@ -265,8 +285,11 @@ pub enum SceneSpec {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PointSpec {
-    /// Normal traction `f_n` (Pa).
+    /// Normal traction `f_n` (Pa): held constant, or its initial value.
     pub normal_traction: f64,
+    /// `"held"` (default) or `"evolving"`: `ḟ_n = -α_n v̄_n` under the phases' `normal_velocity`.
+    #[serde(default)]
+    pub normal: NormalBehaviour,
     /// Relative sliding velocity `v̄_t = v_block - v_base` (m/s) held for `duration` (s), in
     /// order; after the last phase the point is held (`v̄_t = 0`).
     pub phases: Vec<Phase>,
@@ -280,6 +303,9 @@ pub struct Phase {
     pub velocity: f64,
     /// Duration (s).
     pub duration: f64,
+    /// Relative normal velocity `v̄_n` (m/s, positive opening); only with `normal = "evolving"`.
+    #[serde(default)]
+    pub normal_velocity: f64,
 }
 
 /// `kind = "spring_block"`.
@@ -320,8 +346,11 @@ pub struct BlockSpec {
     /// default) starts it impulsively.
     #[serde(default)]
     pub base_ramp_time: f64,
-    /// Normal traction on the contact, held constant (Pa).
+    /// Normal traction on the contact (Pa): held constant, or its initial value.
     pub normal_traction: NormalTractionSpec,
+    /// `"held"` (default) or `"evolving"`: whether the normal traction follows `ḟ_n = -α_n v̄_n`.
+    #[serde(default)]
+    pub normal: NormalBehaviour,
 }
 
 /// Normal traction along the contact.
@@ -448,6 +477,17 @@ impl SceneSpec {
         if v > 0.0 && v.is_finite() { v } else { 1e-3 }
     }
 
+    /// Whether some contact's normal traction evolves (`normal = "evolving"`).
+    pub fn has_evolving_normal(&self) -> bool {
+        let evolving = |n: &NormalBehaviour| *n == NormalBehaviour::Evolving;
+        match self {
+            SceneSpec::Point(p) => evolving(&p.normal),
+            SceneSpec::SpringBlock(_) => false,
+            SceneSpec::Block(b) => evolving(&b.normal),
+            SceneSpec::Mesh(m) => m.contacts.iter().any(|c| evolving(&c.normal)),
+        }
+    }
+
     pub fn check(&self, c: &mut Checker<'_>) {
         match self {
             SceneSpec::Point(p) => {
@@ -458,6 +498,15 @@ impl SceneSpec {
                 for (i, phase) in p.phases.iter().enumerate() {
                     c.finite(&format!("phases[{i}].velocity"), phase.velocity);
                     c.positive(&format!("phases[{i}].duration"), phase.duration);
+                    let key = format!("phases[{i}].normal_velocity");
+                    if c.finite(&key, phase.normal_velocity)
+                        && phase.normal_velocity != 0.0
+                        && p.normal != NormalBehaviour::Evolving
+                    {
+                        let rule =
+                            format!("needs {} = \"evolving\": a held normal traction does not move", c.key("normal"));
+                        c.fail(&key, phase.normal_velocity, rule);
+                    }
                 }
             }
             SceneSpec::SpringBlock(s) => {

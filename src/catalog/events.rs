@@ -9,13 +9,16 @@
 //! event that starts less than `w` after its previous one ended continues that event (the slip
 //! rate of a decelerating segment can flicker about the threshold in its tail).
 
+use crate::catalog::openings::{Opening, OpeningDetector};
 use crate::frame::Frame;
 
-/// The catalog of a run: its slip events (by onset) and their grouping into ruptures.
+/// The catalog of a run: its slip events (by onset), their grouping into ruptures, and the
+/// openings of contacts whose normal traction evolves.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Catalog {
     pub events: Vec<SlipEvent>,
     pub ruptures: Vec<Rupture>,
+    pub openings: Vec<Opening>,
 }
 
 /// One slip event of one segment.
@@ -125,6 +128,9 @@ pub struct EventDetector {
     /// an event's friction force is its contact's. Empty: one contact.
     #[serde(default)]
     contacts: Vec<usize>,
+    /// The openings of contacts whose normal traction evolves.
+    #[serde(default)]
+    openings: OpeningDetector,
 }
 
 impl EventDetector {
@@ -138,6 +144,7 @@ impl EventDetector {
             tracks: vec![SegmentTrack::default(); segments],
             events: Vec::new(),
             contacts: Vec::new(),
+            openings: OpeningDetector::default(),
         }
     }
 
@@ -155,8 +162,16 @@ impl EventDetector {
         self
     }
 
+    /// The same detector also finding openings, for segments of `lengths` (m) along contacts
+    /// whose normal traction evolves ([`crate::catalog::openings`]).
+    pub fn with_openings(mut self, lengths: Vec<f64>) -> Self {
+        self.openings = OpeningDetector::new(lengths);
+        self
+    }
+
     /// Feeds one frame (the initial frame, with `dt = 0`, included).
     pub fn record(&mut self, frame: &Frame) {
+        self.openings.record(frame);
         let contact_of = contact_of(&self.contacts);
         for (k, (track, seg)) in self.tracks.iter_mut().zip(&frame.segments).enumerate() {
             let sample = Sample {
@@ -231,7 +246,8 @@ impl EventDetector {
     pub fn into_catalog(mut self) -> Catalog {
         self.finish();
         let ruptures = ruptures_by_contact(&self.events, &self.contacts);
-        Catalog { events: self.events, ruptures }
+        let openings = self.openings.finish();
+        Catalog { events: self.events, ruptures, openings }
     }
 }
 

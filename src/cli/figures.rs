@@ -1,4 +1,5 @@
-//! `slipfront figures RECORDING.rrd [--out DIR]`: the paper's Figures 8 and 9 as PNG files.
+//! `slipfront figures RECORDING.rrd [--out DIR] [--at T,...]`: the paper's Figures 8 and 9 as PNG
+//! files, and for a body its force–displacement curve and profiles along its contacts.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -10,7 +11,7 @@ use crate::cli::common::{EXIT_FAILED, EXIT_INVALID, fail, print};
 use crate::inspect;
 use crate::inspect::check::{Expectations, check, check_partial};
 use crate::record::schema::RUN_ENDING;
-use crate::study::figures;
+use crate::study::{contact_figures, figures};
 
 #[derive(Debug, Args)]
 pub struct FiguresArgs {
@@ -23,6 +24,10 @@ pub struct FiguresArgs {
     /// `check --partial` judges it.
     #[arg(long)]
     pub partial: bool,
+    /// For a body: the times (s, comma-separated) of the profiles along the contacts' arc length
+    /// in <case>_profiles.png; default a quarter, half, three quarters and the end of the run.
+    #[arg(long, value_delimiter = ',', value_name = "SECONDS")]
+    pub at: Vec<f64>,
 }
 
 /// Runs `slipfront figures`: a recording that `check` (or with `--partial`, `check --partial`)
@@ -56,7 +61,22 @@ pub fn command(args: FiguresArgs) -> ExitCode {
             ),
         );
     }
-    match figures::write_figures(&recording, &args.out) {
+    let end = figures::recorded_end(&recording);
+    if let Some(t) = args.at.iter().find(|t| !(t.is_finite() && (0.0..=end).contains(*t))) {
+        return fail(
+            EXIT_INVALID,
+            format!(
+                "--at {}: a profile's time must lie in the recorded span, 0 to {} s",
+                crate::validate::shortest(*t),
+                crate::validate::shortest(end)
+            ),
+        );
+    }
+    let drawn = figures::write_figures(&recording, &args.out).and_then(|mut paths| {
+        paths.extend(contact_figures::write(&recording, &args.out, &args.at)?);
+        Ok(paths)
+    });
+    match drawn {
         Ok(paths) => {
             let listing: String = paths.iter().map(|path| format!("{}\n", path.display())).collect();
             print(&listing).err().unwrap_or(ExitCode::SUCCESS)

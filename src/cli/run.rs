@@ -102,7 +102,7 @@ pub fn command(args: RunArgs) -> ExitCode {
         Err(exit) => return exit,
     };
     let stop = Stop::catch();
-    let mut save = |memory: &RunMemory| saver.as_mut().map_or(Ok(()), |s| s.save(memory));
+    let mut save = |memory: &RunMemory, label: f64| saver.as_mut().map_or(Ok(()), |s| s.save(memory, label));
     let checkpoints = outputs.every.map(|every| Checkpoints { every, save: &mut save });
     let outcome = run(
         scene.as_mut(),
@@ -146,6 +146,8 @@ struct Outputs {
     stem: String,
     events: PathBuf,
     ruptures: PathBuf,
+    /// The openings CSV, where a contact's normal traction evolves.
+    openings: Option<PathBuf>,
     rrd: Option<PathBuf>,
     every: Option<f64>,
 }
@@ -162,6 +164,7 @@ fn prepare(args: &RunArgs) -> Result<(case::Case, Outputs), ExitCode> {
         .map_err(|e| fail(EXIT_INVALID, format!("output folder {} is not writable: {e}", args.out_dir.display())))?;
     let events = args.events.clone().unwrap_or_else(|| args.out_dir.join(format!("{stem}.events.csv")));
     let ruptures = ruptures_path_for(&events);
+    let openings = case.scene.has_evolving_normal().then(|| crate::sink::catalog::openings_path_for(&events));
     let rrd = (!args.no_rrd).then(|| args.rrd.clone().unwrap_or_else(|| args.out_dir.join(format!("{stem}.rrd"))));
     let every = match &args.checkpoint_every {
         None => None,
@@ -170,7 +173,7 @@ fn prepare(args: &RunArgs) -> Result<(case::Case, Outputs), ExitCode> {
                 .map_err(|e| fail(EXIT_INVALID, e))?,
         ),
     };
-    Ok((case, Outputs { stem, events, ruptures, rrd, every }))
+    Ok((case, Outputs { stem, events, ruptures, openings, rrd, every }))
 }
 
 impl Outputs {
@@ -224,6 +227,9 @@ impl Outputs {
         named.push(Named { role: "--events", path: &self.events });
         if block {
             named.push(Named { role: "the rupture catalog", path: &self.ruptures });
+        }
+        if let Some(path) = &self.openings {
+            named.push(Named { role: "the opening catalog", path });
         }
         named
     }

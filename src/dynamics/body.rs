@@ -36,6 +36,9 @@ pub enum LoadHistory {
     /// `g(t)` rises smoothly from 0 to 1 over `ramp` seconds (`s³ (10 - 15 s + 6 s²)`) and stays
     /// there: a prescribed traction on `S_t` (eq. 10); `ramp = 0` applies it at once.
     Ramp { ramp: f64 },
+    /// `g(t)` rises as [`Self::Ramp`], and falls the same way from `duration` on: a traction
+    /// applied for a while, then removed.
+    Pulse { ramp: f64, duration: f64 },
 }
 
 impl LoadHistory {
@@ -45,23 +48,31 @@ impl LoadHistory {
             LoadHistory::Linear => t,
             LoadHistory::Displacement { motion, component } => motion.displacement_at(t)[*component],
             LoadHistory::Ramp { ramp } => Motion::constant([1.0, 0.0], *ramp).velocity_at(t)[0],
+            LoadHistory::Pulse { ramp, duration } => {
+                let rise = |t: f64| Motion::constant([1.0, 0.0], *ramp).velocity_at(t)[0];
+                rise(t) - rise(t - duration)
+            }
         }
     }
 }
 
 /// The external load at one instant, read per degree of freedom ([`LinearBody::load_at`]).
-pub struct LoadAt<'a> {
-    terms: Vec<(&'a [f64], f64)>,
+/// Without allocating for none or one load: the rate form's right-hand side asks for it at
+/// every stage.
+pub enum LoadAt<'a> {
+    None,
+    One(&'a [f64], f64),
+    Several(Vec<(&'a [f64], f64)>),
 }
 
 impl LoadAt<'_> {
     /// `f⁰_i(t)`: `+0` without loads.
     #[inline]
     pub fn at(&self, i: usize) -> f64 {
-        match self.terms.as_slice() {
-            [] => 0.0,
-            [(pattern, g)] => pattern[i] * g,
-            terms => terms.iter().map(|(pattern, g)| pattern[i] * g).sum(),
+        match self {
+            LoadAt::None => 0.0,
+            LoadAt::One(pattern, g) => pattern[i] * g,
+            LoadAt::Several(terms) => terms.iter().map(|(pattern, g)| pattern[i] * g).sum(),
         }
     }
 }
@@ -79,7 +90,11 @@ impl LinearBody {
 
     /// The external load `f⁰(t)`, to be read per degree of freedom.
     pub fn load_at(&self, t: f64) -> LoadAt<'_> {
-        LoadAt { terms: self.loads.iter().map(|l| (l.pattern.as_slice(), l.history.at(t))).collect() }
+        match self.loads.as_slice() {
+            [] => LoadAt::None,
+            [l] => LoadAt::One(&l.pattern, l.history.at(t)),
+            loads => LoadAt::Several(loads.iter().map(|l| (l.pattern.as_slice(), l.history.at(t))).collect()),
+        }
     }
 
     /// Kinetic energy `½ vᵀ M v`.

@@ -38,7 +38,7 @@ use crate::dynamics::integrator::Integrator;
 use crate::dynamics::memory::{CentralMemory, IntegratorMemory, check_points, mismatch};
 use crate::dynamics::state::State;
 use crate::dynamics::system::System;
-use crate::friction::{ContactState, FrictionError, FrictionParams, Restart, Update, update_from};
+use crate::friction::{ContactState, FrictionError, FrictionParams, Restart, Update, update_with};
 use crate::linalg::stencil::TemplateMatrix;
 
 /// Share of the stability limit `2/ω_max` that the sub-steps use: it covers Lanczos'
@@ -81,8 +81,16 @@ pub struct CentralDifference {
 
 impl CentralDifference {
     fn new(body: &LinearBody, contact: &ContactBoundary, displacement: &[f64]) -> Self {
-        let mut contact_dofs: Vec<usize> =
-            contact.points.iter().flat_map(|p| p.tangential.terms().map(|(dof, _)| dof)).collect();
+        // The tangential degrees of freedom, and the normal ones where a contact's normal evolves.
+        let mut contact_dofs: Vec<usize> = contact
+            .points
+            .iter()
+            .enumerate()
+            .flat_map(|(k, p)| {
+                let normal = if contact.evolves(k) { p.normal } else { Default::default() };
+                p.tangential.terms().chain(normal.terms().collect::<Vec<_>>()).map(|(dof, _)| dof).collect::<Vec<_>>()
+            })
+            .collect();
         contact_dofs.sort_unstable();
         contact_dofs.dedup();
         let parallel = body.dofs() >= PARALLEL_FROM_DOFS;
@@ -232,11 +240,14 @@ impl CentralDifference {
                 let now = points[k].interpolate(displacement);
                 let slip = now - *previous - base[k];
                 *previous = now;
-                *update = update_in_halves(contact.params(k), state, slip, h, restart, 0);
+                let normal =
+                    contact.evolves(k).then(|| (state.traction_n, contact.normal_traction_at(k, displacement)));
+                *update = update_in_halves(contact.params(k), state, slip, normal, h, restart, 0);
             });
         for &dof in &self.contact_dofs {
             self.contact_force[dof] = -system.initial_contact_force[dof];
         }
+        contact.scatter_normal_corrections(displacement, &mut self.contact_force);
         for (k, point) in points.iter().enumerate() {
             let updated = match &self.updates[k] {
                 Ok(updated) => *updated,
@@ -327,19 +338,29 @@ impl Integrator for CentralDifference {
 const PARALLEL_FROM_DOFS: usize = 20_000;
 
 /// The friction update of one point over `h`, repeated as two halves of the slip over `h/2`
-/// where shorter steps cure its failure (see the module documentation).
+/// where shorter steps cure its failure (see the module documentation). An evolving normal
+/// traction goes from `normal.0` to `normal.1` over the step (through its mean in halves).
 fn update_in_halves(
     params: &FrictionParams,
     state: &ContactState,
     slip: f64,
+    normal: Option<(f64, f64)>,
     h: f64,
     restart: Option<Restart>,
     depth: u32,
 ) -> Result<Update, FrictionError> {
-    match update_from(params, state, slip, h, restart) {
+    match update_with(params, state, slip, normal.map(|n| n.1), h, restart) {
         Err(error) if depth < MAX_HALVINGS && error.cured_by_shorter_steps() => {
-            let first = update_in_halves(params, state, 0.5 * slip, 0.5 * h, None, depth + 1)?;
-            let second = update_in_halves(params, &first.state, 0.5 * slip, 0.5 * h, first.restart, depth + 1)?;
+            let (first_half, second_half) = match normal {
+                Some((start, end)) => {
+                    let middle = 0.5 * (start + end);
+                    (Some((start, middle)), Some((middle, end)))
+                }
+                None => (None, None),
+            };
+            let first = update_in_halves(params, state, 0.5 * slip, first_half, 0.5 * h, None, depth + 1)?;
+            let second =
+                update_in_halves(params, &first.state, 0.5 * slip, second_half, 0.5 * h, first.restart, depth + 1)?;
             Ok(Update { plastic_increment: first.plastic_increment + second.plastic_increment, ..second })
         }
         result => result,

@@ -178,11 +178,34 @@ impl MainBody {
     }
 }
 
-/// One frictional contact: its law and its main body.
+/// How a contact's normal traction behaves (the case key `normal`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum NormalBehaviour {
+    /// Prescribed and held constant in time (the paper's §3.2): the friction law sees its
+    /// initial value whatever the body does. The default.
+    #[default]
+    Held,
+    /// `ḟ_n = -α_n v̄_n` from its initial value: `f_n = f_n⁰ - α_n (g₀ + ū_n)` while that is
+    /// positive, and the contact is open (both tractions zero) where it is not.
+    Evolving,
+}
+
+impl NormalBehaviour {
+    pub fn name(self) -> &'static str {
+        match self {
+            NormalBehaviour::Held => "held",
+            NormalBehaviour::Evolving => "evolving",
+        }
+    }
+}
+
+/// One frictional contact: its law, its main body and how its normal traction behaves.
 #[derive(Debug, Clone)]
 pub struct ContactSurface {
     pub params: FrictionParams,
     pub main_body: MainBody,
+    pub normal: NormalBehaviour,
     /// Its points, contiguous in [`ContactBoundary::points`].
     pub points: std::ops::Range<usize>,
     /// How many terms each of its points' tangential projections has (padded to the most).
@@ -194,8 +217,12 @@ pub struct ContactSurface {
 pub struct ContactBoundary {
     pub surfaces: Vec<ContactSurface>,
     pub points: Vec<ContactPoint>,
-    /// Normal traction `f_n ≥ 0` at each point (Pa), held constant.
+    /// Normal traction `f_n ≥ 0` at each point (Pa): held constant, or the initial value of an
+    /// evolving one.
     pub traction_n: Vec<f64>,
+    /// Each point's initial normal gap `g₀ ≥ 0` (m): 0 where it is pressed, and at every point
+    /// of a held contact.
+    pub gap: Vec<f64>,
 }
 
 impl ContactBoundary {
@@ -207,11 +234,95 @@ impl ContactBoundary {
         traction_n: Vec<f64>,
     ) -> Self {
         let (points, terms) = padded(points);
+        let gap = vec![0.0; points.len()];
         Self {
-            surfaces: vec![ContactSurface { params, main_body, points: 0..points.len(), terms }],
+            surfaces: vec![ContactSurface {
+                params,
+                main_body,
+                normal: NormalBehaviour::Held,
+                points: 0..points.len(),
+                terms,
+            }],
             points,
             traction_n,
+            gap,
         }
+    }
+
+    /// Whether point `k`'s normal traction evolves.
+    #[inline]
+    pub fn evolves(&self, k: usize) -> bool {
+        self.surfaces[self.points[k].surface].normal == NormalBehaviour::Evolving
+    }
+
+    /// Whether any contact's normal traction evolves.
+    pub fn any_evolving(&self) -> bool {
+        self.surfaces.iter().any(|s| s.normal == NormalBehaviour::Evolving)
+    }
+
+    /// The normal traction the contact's elastic spring gives point `k` at the displacement
+    /// `u` (from the initial equilibrium): `f_n⁰ - α_n (g₀ + n·Ñu)`, eq. (6)'s `ḟ_n = -α_n v̄_n`
+    /// integrated exactly. Not positive where the point is open.
+    #[inline]
+    pub fn normal_trial(&self, k: usize, u: &[f64]) -> f64 {
+        self.traction_n[k] - self.params(k).alpha_n * (self.gap[k] + self.points[k].normal.apply(u))
+    }
+
+    /// `f_n = max(0, trial)` of an evolving point at `u` ([`Self::normal_trial`]).
+    #[inline]
+    pub fn normal_traction_at(&self, k: usize, u: &[f64]) -> f64 {
+        self.normal_trial(k, u).max(0.0)
+    }
+
+    /// The normal force of evolving point `k` beyond what `K`'s linear spring `-α_n w n·Ñu`
+    /// and the initial equilibrium's `f_n⁰` already give, for its normal traction `f_n` at `u`:
+    /// `w (f_n - f_n⁰ + α_n n·Ñu)`, to be scattered along `n·Ñ`. Zero while the point stays
+    /// pressed as it started; while it is open, it takes the spring and `f_n⁰` away.
+    #[inline]
+    pub fn normal_correction(&self, k: usize, traction_n: f64, u: &[f64]) -> f64 {
+        let point = &self.points[k];
+        point.weight * (traction_n - self.traction_n[k] + self.params(k).alpha_n * point.normal.apply(u))
+    }
+
+    /// `-w α_n` for an open evolving point, 0 otherwise: the change of Newton's operator
+    /// `K + K_c` along its `n·Ñ` ([`Self::normal_correction`]'s slope, negated).
+    #[inline]
+    pub fn normal_stiffness(&self, k: usize, traction_n: f64) -> f64 {
+        if self.evolves(k) && traction_n <= 0.0 { -self.points[k].weight * self.params(k).alpha_n } else { 0.0 }
+    }
+
+    /// Adds every evolving point's [`Self::normal_correction`] at `u` to `forces` and returns
+    /// the points' normal tractions there (empty without evolving points).
+    pub fn scatter_normal_corrections(&self, u: &[f64], forces: &mut [f64]) -> Vec<f64> {
+        if !self.any_evolving() {
+            return Vec::new();
+        }
+        (0..self.points.len())
+            .map(|k| {
+                if !self.evolves(k) {
+                    return self.traction_n[k];
+                }
+                let f_n = self.normal_traction_at(k, u);
+                self.points[k].normal.scatter(self.normal_correction(k, f_n, u), forces);
+                f_n
+            })
+            .collect()
+    }
+
+    /// The potential of evolving point `k`'s [`Self::normal_correction`] at `u`, so that `K`'s
+    /// strain energy plus it is the contact's normal spring energy: with `x = n·Ñu`,
+    /// `f_r = f_n⁰ - α_n g₀`, `w [(max(0, f_r - α_n x)² - max(0, f_r)²)/(2α_n) + f_n⁰ x - α_n x²/2]`
+    /// (J per unit thickness). Zero while the point stays pressed.
+    pub fn normal_potential(&self, k: usize, u: &[f64]) -> f64 {
+        if !self.evolves(k) {
+            return 0.0;
+        }
+        let (point, alpha_n) = (&self.points[k], self.params(k).alpha_n);
+        let x = point.normal.apply(u);
+        let reference = self.traction_n[k] - alpha_n * self.gap[k];
+        let now = (reference - alpha_n * x).max(0.0);
+        let start = reference.max(0.0);
+        point.weight * ((now * now - start * start) / (2.0 * alpha_n) + self.traction_n[k] * x - 0.5 * alpha_n * x * x)
     }
 
     /// The friction law of point `k`.

@@ -21,7 +21,9 @@ pub struct EnergyLedger {
     pub kinetic: f64,
     /// `½ uᵀ K u + uᵀ f_c(0)` (the second term is the work against the initial traction).
     pub strain: f64,
-    /// `Σ w (f_t² - f_t(0)²) / (2 α_t)`: energy stored in the contact's elastic springs.
+    /// `Σ w (f_t² - f_t(0)²) / (2 α_t)`: energy stored in the contact's elastic springs; where
+    /// a contact's normal evolves, with the potential of its normal force beyond `K`'s springs
+    /// ([`ContactBoundary::normal_potential`]), so that an open point's spring holds none.
     pub contact_elastic: f64,
     /// `∫ Σ w Λ |f_t| dt`: frictional dissipation.
     pub dissipation: f64,
@@ -106,5 +108,9 @@ impl EnergyLedger {
                 p.weight * (c.traction_t * c.traction_t - f0 * f0) / (2.0 * contact.params(k).alpha_t)
             })
             .sum();
+        if contact.any_evolving() {
+            self.contact_elastic +=
+                (0..contact.points.len()).map(|k| contact.normal_potential(k, &s.displacement)).sum::<f64>();
+        }
     }
 }

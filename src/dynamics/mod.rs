@@ -26,7 +26,7 @@ pub mod system;
 pub mod wilson;
 
 pub use body::{LinearBody, Load, LoadHistory};
-pub use contact::{ContactBoundary, ContactPoint, ContactSurface, MainBody, Projection};
+pub use contact::{ContactBoundary, ContactPoint, ContactSurface, MainBody, NormalBehaviour, Projection};
 pub use control::{AdaptiveError, StepControl};
 pub use energy::EnergyLedger;
 pub use error::StepError;

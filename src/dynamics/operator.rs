@@ -21,6 +21,9 @@ pub(super) struct Operator {
     /// Positions of each contact point's coupling of its tangential degrees of freedom, pair by
     /// pair in the order of [`crate::dynamics::Projection::terms`].
     point_entries: Vec<Vec<usize>>,
+    /// The same for the normal degrees of freedom of points whose normal traction evolves
+    /// (empty for the others): an open point's spring is taken away there.
+    normal_entries: Vec<Vec<usize>>,
     cholesky: Cholesky,
     /// The mass coefficient and contact stiffnesses factored last; `None` after a failure.
     factored: Option<(f64, Vec<f64>)>,
@@ -32,10 +35,17 @@ impl Operator {
         let n = body.dofs();
         let mut triplets: Vec<(usize, usize, f64)> = body.stiffness.entries().collect();
         triplets.extend((0..n).map(|i| (i, i, 0.0)));
-        for p in &contact.points {
+        for (k, p) in contact.points.iter().enumerate() {
             for (a, _) in p.tangential.terms() {
                 for (b, _) in p.tangential.terms() {
                     triplets.push((a, b, 0.0));
+                }
+            }
+            if contact.evolves(k) {
+                for (a, _) in p.normal.terms() {
+                    for (b, _) in p.normal.terms() {
+                        triplets.push((a, b, 0.0));
+                    }
                 }
             }
         }
@@ -57,8 +67,23 @@ impl Operator {
                     .collect()
             })
             .collect();
+        let normal_entries = contact
+            .points
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                if !contact.evolves(k) {
+                    return Vec::new();
+                }
+                let terms = || p.normal.terms();
+                terms()
+                    .flat_map(|(a, _)| terms().map(move |(b, _)| (a, b)))
+                    .map(|(a, b)| matrix.position(a, b).expect("normal entry in pattern"))
+                    .collect()
+            })
+            .collect();
         let cholesky = Cholesky::analyze(&matrix)?;
-        Ok(Self { matrix, diagonal, stiffness_entries, point_entries, cholesky, factored: None })
+        Ok(Self { matrix, diagonal, stiffness_entries, point_entries, normal_entries, cholesky, factored: None })
     }
 
     /// The mass coefficient and contact stiffnesses factored last, if the last factoring
@@ -68,7 +93,9 @@ impl Operator {
     }
 
     /// Assembles and factors `c₀ M + K + K_c` unless the factored one is the same;
-    /// `contact_stiffness` holds each point's `-w ∂f_t/∂ū`.
+    /// `contact_stiffness` holds each point's `-w ∂f_t/∂ū`, and where a contact's normal evolves
+    /// then each point's change of its normal spring
+    /// ([`crate::dynamics::ContactBoundary::normal_stiffness`]).
     pub fn factor(
         &mut self,
         body: &LinearBody,
@@ -90,8 +117,18 @@ impl Operator {
         for (i, &pos) in self.diagonal.iter().enumerate() {
             values[pos] += c0 * body.mass[i];
         }
+        let m = contact.points.len();
         for ((point, entries), &k) in contact.points.iter().zip(&self.point_entries).zip(contact_stiffness) {
             let terms = || point.tangential.terms();
+            let pairs = terms().flat_map(|(_, c_a)| terms().map(move |(_, c_b)| (c_a, c_b)));
+            for (&entry, (c_a, c_b)) in entries.iter().zip(pairs) {
+                values[entry] += k * c_a * c_b;
+            }
+        }
+        for ((point, entries), &k) in
+            contact.points.iter().zip(&self.normal_entries).zip(contact_stiffness.get(m..).unwrap_or(&[]))
+        {
+            let terms = || point.normal.terms();
             let pairs = terms().flat_map(|(_, c_a)| terms().map(move |(_, c_b)| (c_a, c_b)));
             for (&entry, (c_a, c_b)) in entries.iter().zip(pairs) {
                 values[entry] += k * c_a * c_b;

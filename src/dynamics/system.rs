@@ -103,6 +103,25 @@ impl System {
         Ok(system)
     }
 
+    /// Starts each contact point from the tangential traction `traction_t[k]` (Pa) rather than
+    /// from `f0` alone: the body at rest in an equilibrium found before the run (a static solve
+    /// under gravity, `crate::fem::equilibrium`) that these tractions hold. The contact forces
+    /// `f_c(0)` that eq. (14)'s displacements are measured from, and the energy ledger's zero,
+    /// follow. Call before the first step.
+    pub fn start_from_tractions(&mut self, traction_t: &[f64]) {
+        for (state, &f_t) in self.state.contact.iter_mut().zip(traction_t) {
+            state.traction_t = f_t;
+        }
+        self.initial_traction = self.state.contact.iter().map(|s| s.traction_t).collect();
+        self.initial_contact_force = vec![0.0; self.body.dofs()];
+        for (point, s) in self.contact.points.iter().zip(&self.state.contact) {
+            point.scatter(point.weight * s.traction_t, &mut self.initial_contact_force);
+        }
+        if self.ledger.is_some() {
+            self.track_energy();
+        }
+    }
+
     /// Advances by `dt` as two steps of `dt/2` taken by `half_step`, reported as one step: the
     /// step counter moves by one and `plastic_increment` holds the slip of both halves.
     pub(crate) fn two_halves(
@@ -166,7 +185,7 @@ impl System {
             && s.contact.len() == m
             && s.plastic_increment.len() == m
             && (s.plastic_rate.is_empty() || s.plastic_rate.len() == m)
-            && memory.factored.as_ref().is_none_or(|(_, k)| k.len() == m);
+            && memory.factored.as_ref().is_none_or(|(_, k)| k.len() == m || k.len() == 2 * m);
         if !fits {
             return Err(format!(
                 "the checkpoint's state ({} unknowns, {} contact points) does not fit this case ({n} unknowns, {m} \
@@ -250,6 +269,7 @@ impl System {
         for (point, c) in self.contact.points.iter().zip(&s.contact) {
             point.scatter(point.weight * c.traction_t, &mut imbalance);
         }
+        self.contact.scatter_normal_corrections(&s.displacement, &mut imbalance);
         max_abs(&imbalance)
     }
 }

@@ -32,7 +32,7 @@ use crate::dynamics::newton::{NewtonProblem, newton};
 use crate::dynamics::settings::LinearSolver;
 use crate::dynamics::state::State;
 use crate::dynamics::system::System;
-use crate::friction::{Restart, update_from};
+use crate::friction::{Restart, update_with};
 
 /// Wilson's method's memory between steps.
 #[derive(Default)]
@@ -51,7 +51,9 @@ const CONDENSATIONS_KEPT: usize = 2;
 struct ContactResponse {
     /// `w f_t` of each point.
     weighted_traction: Vec<f64>,
-    /// `-w ∂f_t/∂Δū` of each point (its share of `K_c`).
+    /// `-w ∂f_t/∂Δū` of each point (its share of `K_c`); where a contact's normal evolves,
+    /// followed by each point's change of its normal spring
+    /// ([`crate::dynamics::ContactBoundary::normal_stiffness`]).
     stiffness: Vec<f64>,
     restarts: Vec<Option<Restart>>,
 }
@@ -108,7 +110,7 @@ impl NewtonProblem for CondensedSystem<'_> {
         let c = self.condensation;
         let slips: Vec<f64> = c.points.iter().zip(&self.base).map(|(p, base)| p.interpolate(x) - base).collect();
         let restarts = previous.map_or(self.restarts, |p| &p.restarts);
-        let response = contact_response(self.system, &slips, self.tau, restarts)?;
+        let response = contact_response(self.system, &slips, &[], self.tau, restarts)?;
         let g = c.compliance_times(&c.forces(&response.weighted_traction));
         let residual = x.iter().zip(&self.free_contact).zip(g).map(|((x, w), g)| x - w - g).collect();
         Ok((residual, response))
@@ -317,7 +319,8 @@ fn advance_contact(
     for (k, point) in contact.points.iter().enumerate() {
         let slip = point.interpolate(du) - base[k];
         let restart = restarts[k].map(|r| r.scaled(1.0 / theta));
-        let updated = update_from(contact.params(k), &old.contact[k], slip, dt, restart)
+        let traction_n = contact.evolves(k).then(|| contact.normal_traction_at(k, &next.displacement));
+        let updated = update_with(contact.params(k), &old.contact[k], slip, traction_n, dt, restart)
             .map_err(|error| StepError::Friction { point: k, state: old.contact[k], error })?;
         next.contact[k] = updated.state;
         next.plastic_increment[k] = updated.plastic_increment;
@@ -353,7 +356,17 @@ fn evaluate(
     let base = system.contact.base_slips(t, t + tau);
     let slips: Vec<f64> =
         system.contact.points.iter().zip(&base).map(|(p, base)| p.interpolate(du_theta) - base).collect();
-    let response = contact_response(system, &slips, tau, restarts)?;
+    // An evolving normal traction at t_n + τ, and its force beyond K's spring.
+    let normals = if system.contact.any_evolving() {
+        let u_theta: Vec<f64> = system.state.displacement.iter().zip(du_theta).map(|(u, d)| u + d).collect();
+        let mut extra = vec![0.0; residual.len()];
+        let normals = system.contact.scatter_normal_corrections(&u_theta, &mut extra);
+        residual.iter_mut().zip(extra).for_each(|(r, e)| *r -= e);
+        normals
+    } else {
+        Vec::new()
+    };
+    let response = contact_response(system, &slips, &normals, tau, restarts)?;
     for (point, &t) in system.contact.points.iter().zip(&response.weighted_traction) {
         point.scatter(-t, &mut residual);
     }
@@ -375,26 +388,39 @@ fn body_residual(system: &System, du_theta: &[f64], tau: f64) -> Vec<f64> {
     residual
 }
 
-/// Updates every contact point over `τ` by its relative slip increment.
+/// Updates every contact point over `τ` by its relative slip increment, evolving points to
+/// their normal tractions `normals` at `t_n + τ` (empty where no contact's normal evolves).
+///
+/// Newton's operator takes each point's `-w ∂f_t/∂Δū_t` and an open point's normal spring
+/// taken away; the consistent tangent's `tn` coupling of an evolving point
+/// (`-α_n w ∂f_t/∂f_n`, [`crate::friction::Update::normal_tangent`]) would make it
+/// unsymmetric, so the iteration leaves it out: the residual stays exact, and Newton converges
+/// linearly where the coupling is strong (loading points near opening).
 fn contact_response(
     system: &System,
     slips: &[f64],
+    normals: &[f64],
     tau: f64,
     restarts: &[Option<Restart>],
 ) -> Result<ContactResponse, StepError> {
-    let count = system.contact.points.len();
+    let contact = &system.contact;
+    let count = contact.points.len();
     let mut response = ContactResponse {
         weighted_traction: Vec::with_capacity(count),
-        stiffness: Vec::with_capacity(count),
+        stiffness: Vec::with_capacity(if normals.is_empty() { count } else { 2 * count }),
         restarts: Vec::with_capacity(count),
     };
-    for (k, ((point, state), &slip)) in system.contact.points.iter().zip(&system.state.contact).zip(slips).enumerate() {
+    for (k, ((point, state), &slip)) in contact.points.iter().zip(&system.state.contact).zip(slips).enumerate() {
         let restart = restarts.get(k).copied().flatten();
-        let updated = update_from(system.contact.params(k), state, slip, tau, restart)
+        let traction_n = (!normals.is_empty() && contact.evolves(k)).then(|| normals[k]);
+        let updated = update_with(contact.params(k), state, slip, traction_n, tau, restart)
             .map_err(|error| StepError::Friction { point: k, state: *state, error })?;
         response.weighted_traction.push(point.weight * updated.state.traction_t);
         response.stiffness.push(-point.weight * updated.tangent);
         response.restarts.push(updated.restart);
+    }
+    if !normals.is_empty() {
+        response.stiffness.extend(normals.iter().enumerate().map(|(k, &f_n)| contact.normal_stiffness(k, f_n)));
     }
     Ok(response)
 }

@@ -98,3 +98,30 @@ pub fn signed_double_area(coords: &[Vector2<f64>]) -> f64 {
 pub fn lumped_mass(density: f64, area: f64, corners: usize) -> f64 {
     density / corners as f64 * area
 }
+
+/// `∫ N_a dA` for each corner of the bilinear quadrilateral `coords` (counter-clockwise), by
+/// the 2 × 2 Gauss rule, exact here (`N_a det J` is quadratic in each natural coordinate): the
+/// row sums of its consistent mass per unit density, each corner's share of a body force. A
+/// parallelogram's are `A/4` each, its lumped mass.
+pub fn shape_integrals(coords: &[Vector2<f64>; 4]) -> [f64; 4] {
+    let mut integrals = [0.0; 4];
+    for &xi in &GAUSS_2 {
+        for &eta in &GAUSS_2 {
+            let mut jac = nalgebra::Matrix2::<f64>::zeros();
+            for (a, &(xa, ya)) in CORNERS.iter().enumerate() {
+                let (dxi, deta) = (0.25 * xa * (1.0 + ya * eta), 0.25 * ya * (1.0 + xa * xi));
+                jac += nalgebra::Matrix2::new(
+                    dxi * coords[a].x,
+                    dxi * coords[a].y,
+                    deta * coords[a].x,
+                    deta * coords[a].y,
+                );
+            }
+            let det = jac.determinant();
+            for (a, &(xa, ya)) in CORNERS.iter().enumerate() {
+                integrals[a] += 0.25 * (1.0 + xa * xi) * (1.0 + ya * eta) * det;
+            }
+        }
+    }
+    integrals
+}

@@ -2,9 +2,11 @@
 //! contacts, and assembly into the equation of motion (14).
 
 pub mod assembly;
+pub mod axisymmetric;
 pub mod body_mesh;
 pub mod curve;
 pub mod element;
+pub mod equilibrium;
 pub mod gmsh;
 pub mod rectangle;
 

@@ -1,8 +1,11 @@
 //! The rate form of the super/subloading surface friction model, eqs. (1)-(9) of the paper with
 //! the sign conventions of MODEL.md, in 2D: `n = (0, 1)`, `t = (sign f_t, 0)`.
 //!
-//! The analyses prescribe the normal traction, so the scalar functions here take the relative
-//! tangential velocity `v̄_t` only; [`traction_rate`] gives the full 2D rate of eq. (6).
+//! [`traction_rate`] gives the full 2D rate of eq. (6). The scalar [`tangential_rate`] gives its
+//! tangential component for a relative sliding velocity `(v̄_t, v̄_n)`: under a held normal
+//! traction `v̄_n = 0` (the paper's §3.2); under an evolving one the normal row of eq. (6) is
+//! `ḟ_n = -α_n v̄_n` in loading and unloading alike, and `v̄_n` enters `ḟ_t` through eq. (5)'s
+//! `α_n (R/R*) μ_k n·v̄` (docs/model.md, "The normal terms").
 
 use nalgebra::{Matrix2, Vector2};
 
@@ -115,7 +118,7 @@ fn numerator(params: &FrictionParams, state: &ContactState, v_rel: Vector2<f64>)
     let ratio = state.sliding_ratio(params);
     let mu_f = params.mu_k * state.traction_n;
     let gamma = params.rstar_scale();
-    params.alpha_n * ratio * state.r_star() * params.mu_k * v_rel.y
+    params.alpha_n * ratio * state.structure * params.mu_k * v_rel.y
         - params.alpha_t * state.direction() * v_rel.x
         - gamma * params.xi * ratio * healing(params, state.structure) * mu_f
 }
@@ -139,7 +142,8 @@ pub fn elastoplastic_tensor(params: &FrictionParams, state: &ContactState) -> Ma
     let t = Vector2::new(state.direction(), 0.0);
     let n = Vector2::new(0.0, 1.0);
     let ratio = state.sliding_ratio(params);
-    let flow = n * (params.alpha_n * ratio * state.r_star() * params.mu_k) - t * params.alpha_t;
+    // (R/R*) = R (1/R*): the similarity ratio of the subloading surface, eq. (3).
+    let flow = n * (params.alpha_n * ratio * state.structure * params.mu_k) - t * params.alpha_t;
     elastic_tensor(params) - (t * params.alpha_t) * flow.transpose() / denominator(params, state)
 }
 
@@ -167,8 +171,8 @@ pub fn traction_rate(params: &FrictionParams, state: &ContactState, v_rel: Vecto
     }
 }
 
-/// Tangential traction rate `ḟ_t` under constant normal traction, with its partial derivatives,
-/// as the dynamic solver needs them at the end of a step.
+/// Tangential traction rate `ḟ_t`, with its partial derivatives, as the dynamic solver needs them
+/// at the end of a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TangentialRate {
     /// `ḟ_t` (Pa/s).
@@ -181,6 +185,9 @@ pub struct TangentialRate {
     pub d_traction: f64,
     /// `∂ḟ_t/∂(1/R*)` at fixed `v̄_t` and `f_t` (Pa/s).
     pub d_structure: f64,
+    /// `∂ḟ_t/∂v̄_n`: the `tn` entry of `C^ep`, `-α_t t α_n (R/R*) μ_k / D` (loading), 0
+    /// (unloading) (Pa/m).
+    pub d_normal_velocity: f64,
 }
 
 impl TangentialRate {
@@ -196,45 +203,141 @@ impl TangentialRate {
     }
 }
 
-/// [`traction_rate`] for `v̄ = (v̄_t, 0)`, tangential component, with partial derivatives.
-pub fn tangential_rate(params: &FrictionParams, state: &ContactState, v_t: f64) -> TangentialRate {
+/// What eqs. (5) and (9) give at a loading point, and the terms its partials reuse.
+struct Loading {
+    sigma: f64,
+    structure: f64,
+    mu_f: f64,
+    gamma: f64,
+    ratio: f64,
+    /// `-ln R`.
+    u: f64,
+    healing: f64,
+    decay: f64,
+    denominator: f64,
+    /// `Λ > 0`.
+    lambda: f64,
+}
+
+/// `Λ` of eq. (5) for `v̄ = (v̄_t, v̄_n)` where it is positive (eq. 9: loading); otherwise the
+/// rate of eq. (6) that holds instead: unloading (`ḟ_t = -α_t v̄_t`), or nothing transmitted
+/// without normal traction. `-ln R` is evaluated only where loading is possible: a numerator
+/// `N ≤ 0` over a denominator that is positive whatever `ln R` (`R ≤ 1` and
+/// `α_t > γ κ R (1/R* - 1)^m μ_k f_n`) is unloading, as `N/D` would say.
+#[inline(always)]
+fn loading(params: &FrictionParams, state: &ContactState, v_t: f64, v_n: f64) -> Result<Loading, TangentialRate> {
     let elastic = TangentialRate {
         rate: -params.alpha_t * v_t,
         plastic_multiplier: 0.0,
         d_velocity: -params.alpha_t,
         d_traction: 0.0,
         d_structure: 0.0,
+        d_normal_velocity: 0.0,
     };
     if state.traction_n <= 0.0 {
         // No normal traction: nothing is transmitted.
-        return TangentialRate {
+        return Err(TangentialRate {
             rate: 0.0,
             plastic_multiplier: 0.0,
             d_velocity: 0.0,
             d_traction: 0.0,
             d_structure: 0.0,
-        };
+            d_normal_velocity: 0.0,
+        });
     }
     if state.traction_t == 0.0 {
-        return elastic;
+        return Err(elastic);
     }
     let sigma = state.direction();
     let z = state.structure;
     let mu_f = params.mu_k * state.traction_n;
     let gamma = params.rstar_scale();
     let ratio = state.sliding_ratio(params);
-    let u = -ratio.ln();
     let h = healing(params, z);
     let g = decay(params, z);
-    let numer = -params.alpha_t * sigma * v_t - gamma * params.xi * ratio * h * mu_f;
-    let denom = params.alpha_t + params.r * u * z * mu_f - gamma * params.kappa * ratio * g * mu_f;
+    // Eq. (5)'s numerator; its normal term is +0 where v̄_n = 0, which leaves the tangential
+    // terms' sum unchanged to the bit.
+    let numer = -params.alpha_t * sigma * v_t + params.alpha_n * ratio * z * params.mu_k * v_n
+        - gamma * params.xi * ratio * h * mu_f;
+    let softening = gamma * params.kappa * ratio * g * mu_f;
+    if numer <= 0.0 && ratio <= 1.0 && params.alpha_t > softening {
+        return Err(elastic);
+    }
+    let u = -ratio.ln();
+    let denom = params.alpha_t + params.r * u * z * mu_f - softening;
     let lambda = numer / denom;
     if lambda <= 0.0 {
-        return elastic;
+        return Err(elastic);
     }
+    Ok(Loading { sigma, structure: z, mu_f, gamma, ratio, u, healing: h, decay: g, denominator: denom, lambda })
+}
+
+/// `ḟ_t` of eq. (6) switched by eq. (9) and `Λ` (eq. 5, clipped at 0) for `v̄ = (v̄_t, v̄_n)`:
+/// [`tangential_rate`] without its partial derivatives, which an explicit integrator does not
+/// use (the rate form's right-hand side evaluates it at every contact point of every stage).
+#[inline(always)]
+pub fn tangential_rate_and_multiplier(params: &FrictionParams, state: &ContactState, v_t: f64, v_n: f64) -> (f64, f64) {
+    match loading(params, state, v_t, v_n) {
+        Ok(l) => (-params.alpha_t * v_t - params.alpha_t * l.sigma * l.lambda, l.lambda),
+        Err(other) => (other.rate, other.plastic_multiplier),
+    }
+}
+
+/// Whether a point loads by eq. (9) (`Λ > 0` in eq. 5) at `v̄ = (v̄_t, 0)`: the branch of
+/// eq. (6) it follows from this state ([`tangential_rate_on_branch`]).
+pub fn loads(params: &FrictionParams, state: &ContactState, v_t: f64) -> bool {
+    loading(params, state, v_t, 0.0).is_ok()
+}
+
+/// `ḟ_t` of eq. (6) and `Λ` of eq. (5) on one branch of eq. (6) for `v̄ = (v̄_t, 0)`, continued
+/// past eq. (9)'s switch: on the loading branch `Λ = N/D` unclipped (negative where eq. 9
+/// would unload), on the unloading branch `Λ = 0`. Each branch is smooth in the state, so an
+/// integrator that holds a point on one branch over a step and ends the step where the
+/// branch's switching function changes sign meets no kink inside a step. Returns
+/// `(ḟ_t, Λ, N)`, `N` the numerator of eq. (5), whose sign is eq. (9)'s switch (the
+/// denominator `D` is positive: `R ≤ 1` and `α_t > γ κ R (1/R* - 1)^m μ_k f_n` for the
+/// paper's constants); `N` is NaN where eq. (9) does not apply (no normal traction, or
+/// `f_t = 0`, where the point is elastic).
+#[inline(always)]
+pub fn tangential_rate_on_branch(
+    params: &FrictionParams,
+    state: &ContactState,
+    v_t: f64,
+    loading: bool,
+) -> (f64, f64, f64) {
+    if state.traction_n <= 0.0 {
+        return (0.0, 0.0, f64::NAN);
+    }
+    let elastic = -params.alpha_t * v_t;
+    if state.traction_t == 0.0 {
+        return (elastic, 0.0, f64::NAN);
+    }
+    let sigma = state.direction();
+    let z = state.structure;
+    let mu_f = params.mu_k * state.traction_n;
+    let gamma = params.rstar_scale();
+    let ratio = state.sliding_ratio(params);
+    let numer = -params.alpha_t * sigma * v_t - gamma * params.xi * ratio * healing(params, z) * mu_f;
+    if !loading {
+        return (elastic, 0.0, numer);
+    }
+    let softening = gamma * params.kappa * ratio * decay(params, z) * mu_f;
+    let denom = params.alpha_t - params.r * ratio.ln() * z * mu_f - softening;
+    let lambda = numer / denom;
+    (elastic - params.alpha_t * sigma * lambda, lambda, numer)
+}
+
+/// [`traction_rate`] for `v̄ = (v̄_t, v̄_n)`, tangential component, with partial derivatives.
+pub fn tangential_rate(params: &FrictionParams, state: &ContactState, v_t: f64, v_n: f64) -> TangentialRate {
+    let l = match loading(params, state, v_t, v_n) {
+        Ok(l) => l,
+        Err(other) => return other,
+    };
+    let Loading { sigma, structure: z, mu_f, gamma, ratio, u, healing: h, decay: g, denominator: denom, lambda } = l;
     // Partials of N and D with respect to R and to 1/R* at fixed R.
-    let dn_dratio = -gamma * params.xi * h * mu_f;
-    let dn_dz = -gamma * params.xi * ratio * healing_slope(params, z) * mu_f;
+    let dn_dratio = params.alpha_n * z * params.mu_k * v_n - gamma * params.xi * h * mu_f;
+    let dn_dz =
+        params.alpha_n * ratio * params.mu_k * v_n - gamma * params.xi * ratio * healing_slope(params, z) * mu_f;
     let dg_dz = decay_slope(params, z);
     let dd_dratio = -params.r * z * mu_f / ratio - gamma * params.kappa * g * mu_f;
     let dd_dz = params.r * u * mu_f - gamma * params.kappa * ratio * dg_dz * mu_f;
@@ -249,5 +352,6 @@ pub fn tangential_rate(params: &FrictionParams, state: &ContactState, v_t: f64) 
         d_velocity: -params.alpha_t * (1.0 - params.alpha_t / denom),
         d_traction: -params.alpha_t * sigma * dlambda_dratio * dratio_dtraction,
         d_structure: -params.alpha_t * sigma * (dlambda_dratio * dratio_dz + dlambda_dz_fixed_ratio),
+        d_normal_velocity: -params.alpha_t * sigma * params.alpha_n * ratio * z * params.mu_k / denom,
     }
 }

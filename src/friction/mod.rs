@@ -3,7 +3,8 @@
 //! * [`params`]: material constants (Table 1) and which `R*` rule is used.
 //! * [`state`]: what a contact point carries between steps.
 //! * [`law`]: the rate form, eqs. (1)-(9).
-//! * [`update`]: the implicit step a solver calls, with its consistent tangent.
+//! * [`update`]: the implicit step a solver calls, with its consistent tangent (held or evolving
+//!   normal traction).
 //! * [`expint`]: the exponential integral that makes the `R` rule exact.
 
 pub mod expint;
@@ -14,4 +15,4 @@ pub mod update;
 
 pub use params::{FrictionParams, RStarLaw};
 pub use state::ContactState;
-pub use update::{FrictionError, Restart, Update, update, update_from};
+pub use update::{FrictionError, Restart, Update, update, update_evolving, update_from, update_with};

@@ -46,6 +46,13 @@ pub struct Update {
     pub tangent: f64,
     /// `∂(1/R*)/∂Δū` (1/m).
     pub structure_tangent: f64,
+    /// `∂f_t/∂f_n` at the end of the step (-), the normal traction's share of the consistent
+    /// tangent: `σ α_t R μ_k (1/R*)/|∂ψ/∂Δp|` in loading, 0 otherwise. An evolving normal
+    /// traction `f_n = f_n⁰ - α_n ū_n` makes `∂f_t/∂Δū_n = -α_n` times it, the discrete `tn`
+    /// entry of eq. (7)'s `C^ep`.
+    pub normal_tangent: f64,
+    /// `∂(1/R*)/∂f_n` at the end of the step (1/Pa).
+    pub structure_normal_tangent: f64,
     /// Where the consistency solve ended (loading only), to start the next update of the same
     /// point from the same state with [`update_from`].
     pub restart: Option<Restart>,
@@ -147,6 +154,86 @@ pub fn update_from(
     dt: f64,
     restart: Option<Restart>,
 ) -> Result<Update, FrictionError> {
+    if state.traction_n <= 0.0 {
+        check_inputs(slip_increment, dt)?;
+        return without_strength(params, state, slip_increment, dt);
+    }
+    update_pressed(params, state, slip_increment, state.traction_n, dt, restart)
+}
+
+/// [`update_from`] for a point whose normal traction evolves (`ḟ_n = -α_n v̄_n`, integrated
+/// exactly by the caller): `traction_n` is its value at the end of the step. The subloading
+/// surface the step ends on is the end's, `|f_t| = R μ_k f_n (1/R*)` with the new `f_n`; `R`
+/// at the start is the start's. Where `traction_n ≤ 0` the contact is open: both tractions
+/// are zero and the degree of structure is held (no traction, so no plastic slip to decay it,
+/// and no real contact to heal; docs/model.md, "Opening and closing"). A point that was open
+/// and closes starts again from `f_t = 0`.
+pub fn update_evolving(
+    params: &FrictionParams,
+    state: &ContactState,
+    slip_increment: f64,
+    traction_n: f64,
+    dt: f64,
+    restart: Option<Restart>,
+) -> Result<Update, FrictionError> {
+    if !traction_n.is_finite() {
+        return Err(FrictionError::NonFinite { what: "normal traction", value: traction_n });
+    }
+    if traction_n <= 0.0 {
+        check_inputs(slip_increment, dt)?;
+        return Ok(Update {
+            state: ContactState { traction_t: 0.0, traction_n: 0.0, ..*state },
+            plastic_increment: 0.0,
+            tangent: 0.0,
+            structure_tangent: 0.0,
+            normal_tangent: 0.0,
+            structure_normal_tangent: 0.0,
+            restart: None,
+        });
+    }
+    if state.traction_n <= 0.0 {
+        let closing = ContactState { traction_t: 0.0, traction_n, ..*state };
+        return update_pressed(params, &closing, slip_increment, traction_n, dt, None);
+    }
+    update_pressed(params, state, slip_increment, traction_n, dt, restart)
+}
+
+/// [`update_from`] where `traction_n` is `None` (the normal traction held), [`update_evolving`]
+/// to `traction_n` at the end of the step otherwise.
+pub fn update_with(
+    params: &FrictionParams,
+    state: &ContactState,
+    slip_increment: f64,
+    traction_n: Option<f64>,
+    dt: f64,
+    restart: Option<Restart>,
+) -> Result<Update, FrictionError> {
+    match traction_n {
+        None => update_from(params, state, slip_increment, dt, restart),
+        Some(f_n) => update_evolving(params, state, slip_increment, f_n, dt, restart),
+    }
+}
+
+fn check_inputs(slip_increment: f64, dt: f64) -> Result<(), FrictionError> {
+    if !slip_increment.is_finite() {
+        return Err(FrictionError::NonFinite { what: "relative slip increment", value: slip_increment });
+    }
+    if !dt.is_finite() || dt < 0.0 {
+        return Err(FrictionError::NonFinite { what: "time step", value: dt });
+    }
+    Ok(())
+}
+
+/// The update of a point pressed at the start (`state.traction_n > 0`) and at the end
+/// (`traction_n > 0`) of the step.
+fn update_pressed(
+    params: &FrictionParams,
+    state: &ContactState,
+    slip_increment: f64,
+    traction_n: f64,
+    dt: f64,
+    restart: Option<Restart>,
+) -> Result<Update, FrictionError> {
     if !slip_increment.is_finite() {
         return Err(FrictionError::NonFinite { what: "relative slip increment", value: slip_increment });
     }
@@ -155,19 +242,16 @@ pub fn update_from(
     }
     let alpha = params.alpha_t;
     let z0 = state.structure;
-    let traction_n = state.traction_n;
-
-    if state.traction_n <= 0.0 {
-        return without_strength(params, state, slip_increment, dt);
-    }
     let mu_f = params.mu_k * traction_n;
     let trial = state.traction_t - alpha * slip_increment;
     let healed = solve_structure(params, z0, 0.0, dt)?;
     let elastic = Update {
-        state: ContactState { traction_t: trial, structure: healed.value, ..*state },
+        state: ContactState { traction_t: trial, traction_n, structure: healed.value, ..*state },
         plastic_increment: 0.0,
         tangent: -alpha,
         structure_tangent: 0.0,
+        normal_tangent: 0.0,
+        structure_normal_tangent: 0.0,
         restart: None,
     };
     if trial == 0.0 {
@@ -175,7 +259,8 @@ pub fn update_from(
     }
     let sigma = trial.signum();
     let reversed = state.traction_t * sigma <= 0.0;
-    let ratio_start = if reversed { 0.0 } else { state.traction_t.abs() / (mu_f * z0) };
+    // R at the start is the start's: on the surface through the start's tractions.
+    let ratio_start = if reversed { 0.0 } else { state.traction_t.abs() / (params.mu_k * state.traction_n * z0) };
     if ratio_start.is_nan() || ratio_start > 1.0 + ROUNDING {
         return Err(FrictionError::SlidingRatioOutOfRange { sliding_ratio: ratio_start });
     }
@@ -183,7 +268,7 @@ pub fn update_from(
     if trial_abs / (mu_f * healed.value) <= ratio_start {
         return Ok(elastic); // unloading: the predictor lies inside the subloading surface
     }
-    let loading = Loading { params, z0, dt, mu_f, trial_abs, ratio_start, healed: healed.value };
+    let loading = Loading { params, z0, dt, traction_n, mu_f, trial_abs, ratio_start, healed: healed.value };
     let (last, root, psi_start) = loading.return_to_surface(restart)?;
     Ok(loading.update(state, sigma, &last, root, psi_start))
 }
@@ -208,6 +293,8 @@ fn without_strength(
         plastic_increment: increment,
         tangent: 0.0,
         structure_tangent: structure.d_plastic * slip_increment.signum(),
+        normal_tangent: 0.0,
+        structure_normal_tangent: 0.0,
         restart: None,
     })
 }
@@ -219,7 +306,9 @@ struct Loading<'a> {
     /// `1/R*` at the start.
     z0: f64,
     dt: f64,
-    /// `μ_k f_n`.
+    /// `f_n` at the end of the step.
+    traction_n: f64,
+    /// `μ_k f_n` at the end of the step.
     mu_f: f64,
     /// `|f_trial|`.
     trial_abs: f64,
@@ -233,7 +322,7 @@ impl Loading<'_> {
     /// The end of the step on the subloading surface, the root's position for a restart, and
     /// `Ψ(R₀)`.
     fn return_to_surface(&self, restart: Option<Restart>) -> Result<(OnSurface, Option<Root>, f64), FrictionError> {
-        let Loading { params, z0, dt, mu_f, trial_abs, ratio_start, healed } = *self;
+        let Loading { params, z0, dt, mu_f, trial_abs, ratio_start, healed, .. } = *self;
         let alpha = params.alpha_t;
         // Loading: find the end of the step on the subloading surface, ψ = |f_trial| - α_t Δp -
         // R μ_k f_n z(Δp) = 0 with Ψ(R) = Ψ(R₀) + r Δp. Ψ(R) at the start is the restart's only if
@@ -302,9 +391,8 @@ impl Loading<'_> {
 
     /// The update that ends on the surface at `last`, with traction of sign `sigma`.
     fn update(&self, state: &ContactState, sigma: f64, last: &OnSurface, root: Option<Root>, psi_start: f64) -> Update {
-        let Loading { params, z0, dt, mu_f, ratio_start, .. } = *self;
+        let Loading { params, z0, dt, traction_n, mu_f, ratio_start, .. } = *self;
         let alpha = params.alpha_t;
-        let traction_n = state.traction_n;
         let (increment, structure) = polish_increment(params, z0, dt, last.ratio * mu_f, last);
         let stiffness = alpha + last.hardening; // |∂ψ/∂Δp|
         // The traction on the subloading surface, |f| = R μ_k f_n / R*: exact on the surface side,
@@ -312,6 +400,8 @@ impl Loading<'_> {
         let traction = sigma * last.ratio * mu_f * structure.value;
         // ∂Δp/∂|f_trial| = 1/|∂ψ/∂Δp|, ∂|f_trial|/∂Δū = -α_t σ.
         let d_increment = -alpha * sigma / stiffness;
+        // ∂ψ/∂f_n = -R μ_k (1/R*) at fixed Δp: ∂Δp/∂f_n = -R μ_k (1/R*)/|∂ψ/∂Δp|.
+        let d_increment_normal = -last.ratio * params.mu_k * structure.value / stiffness;
         Update {
             state: ContactState {
                 traction_t: traction,
@@ -323,6 +413,8 @@ impl Loading<'_> {
             // -α_t (1 - α_t/(α_t + h)) = -α_t h/(α_t + h), without the cancellation.
             tangent: -alpha * last.hardening / stiffness,
             structure_tangent: structure.d_plastic * d_increment,
+            normal_tangent: -sigma * alpha * d_increment_normal,
+            structure_normal_tangent: structure.d_plastic * d_increment_normal,
             restart: Some(Restart { ratio_start, psi_start, plastic_increment: increment, root }),
         }
     }

@@ -5,7 +5,7 @@
 use std::str::FromStr;
 
 use crate::catalog::events::{Rupture, SlipEvent};
-use crate::sink::catalog::{EVENTS_HEADER, RUPTURES_HEADER};
+use crate::sink::catalog::{EVENTS_HEADER, RUPTURES_HEADER, RUPTURES_HEADER_RING};
 
 /// The slip events of an events CSV; `name` stands for the file in messages. The CSV does not
 /// hold the friction force or `1/R*` at the onset: those are NaN and `None`.
@@ -29,9 +29,12 @@ pub fn events(text: &str, name: &str) -> Result<Vec<SlipEvent>, String> {
         .collect()
 }
 
-/// The ruptures of a ruptures CSV; `name` stands for the file in messages.
+/// The ruptures of a ruptures CSV (of a plane body, force drops in N/m, or of a ring, in N);
+/// `name` stands for the file in messages.
 pub fn ruptures(text: &str, name: &str) -> Result<Vec<Rupture>, String> {
-    rows(text, name, RUPTURES_HEADER)?
+    let ring = text.lines().next() == Some(RUPTURES_HEADER_RING);
+    let header = if ring { RUPTURES_HEADER_RING } else { RUPTURES_HEADER };
+    rows(text, name, header)?
         .map(|(line, fields)| {
             let index = |i: usize| number::<usize>(fields[i], name, line);
             let value = |i: usize| number::<f64>(fields[i], name, line);
@@ -112,7 +115,11 @@ mod tests {
             max_slip: 1e-6,
             friction_force_drop: 12.0,
         };
-        assert_eq!(ruptures(&ruptures_csv(std::slice::from_ref(&rupture)), "r.csv").unwrap(), vec![rupture]);
+        assert_eq!(ruptures(&ruptures_csv(std::slice::from_ref(&rupture)), "r.csv").unwrap(), vec![rupture.clone()]);
+        // A ring's header ends in `_n`, a prefix of the plane body's `_n_per_m`: both read back.
+        let ring = crate::sink::catalog::ruptures_csv_in(std::slice::from_ref(&rupture), true);
+        assert!(ring.starts_with(crate::sink::catalog::RUPTURES_HEADER_RING));
+        assert_eq!(ruptures(&ring, "r.csv").unwrap(), vec![rupture]);
         assert!(events("segment\n", "e.csv").unwrap_err().contains("does not start with the catalog's header"));
         let short = format!("{EVENTS_HEADER}\n1,2\n");
         assert_eq!(events(&short, "e.csv").unwrap_err(), "e.csv, line 2: 2 fields where the header has 7");

@@ -258,6 +258,13 @@ fn describe(recording: &Recording, report: &mut Report, early: bool) -> Option<(
         info.t_end,
         info.stepping()
     ));
+    if info.axisymmetric {
+        report.summary.push(format!(
+            "axisymmetric: x is the radius, y the axis; {} is the total around the circumference, in {}",
+            schema::FRICTION_FORCE,
+            info.force_unit()
+        ));
+    }
     match &ending {
         None if early => report.summary.push(format!(
             "no ending record at {}: the run did not finish writing this file; judged up to its last row (--partial)",

@@ -142,7 +142,7 @@ fn split(series: &str) -> (&str, Option<usize>) {
 
 /// The column of instance `instance` of `entity`: quantity, unit, segment or node number.
 fn column_name(entity: &str, instance: Option<usize>, info: &RunInfo) -> String {
-    let unit = unit_of(entity, info.kind).map(|u| format!("_{u}")).unwrap_or_default();
+    let unit = unit_of(entity, info.kind, info.axisymmetric).map(|u| format!("_{u}")).unwrap_or_default();
     let quantity = match entity {
         schema::FRICTION_FORCE => "friction_force",
         schema::BASE_UX => "base_u_x",
@@ -160,7 +160,7 @@ fn column_name(entity: &str, instance: Option<usize>, info: &RunInfo) -> String 
 
 /// The unit of an entity's values as it goes in a column name (`N_per_m`, `m_per_s`), `None`
 /// for a dimensionless one.
-fn unit_of(entity: &str, kind: SceneKind) -> Option<&'static str> {
+fn unit_of(entity: &str, kind: SceneKind, ring: bool) -> Option<&'static str> {
     let quantity = Quantity::ALL.iter().find(|q| schema::segment_entity(**q) == entity);
     if let Some(quantity) = quantity {
         return match quantity {
@@ -171,6 +171,7 @@ fn unit_of(entity: &str, kind: SceneKind) -> Option<&'static str> {
         };
     }
     match entity {
+        schema::FRICTION_FORCE if ring => Some("N"),
         schema::FRICTION_FORCE if kind.has_body() => Some("N_per_m"),
         schema::FRICTION_FORCE => Some("Pa"),
         schema::BLOCK_V => Some("m_per_s"),
@@ -190,12 +191,13 @@ mod tests {
 
     #[test]
     fn units_follow_the_schema() {
-        assert_eq!(unit_of("contact/friction_force", SceneKind::Block), Some("N_per_m"));
-        assert_eq!(unit_of("contact/friction_force", SceneKind::SpringBlock), Some("Pa"));
-        assert_eq!(unit_of("contact/structure", SceneKind::Block), None);
-        assert_eq!(unit_of("contact/slip_rate", SceneKind::Block), Some("m_per_s"));
-        assert_eq!(unit_of("body/u_y", SceneKind::Block), Some("m"));
-        assert_eq!(unit_of("block/v", SceneKind::SpringBlock), Some("m_per_s"));
+        assert_eq!(unit_of("contact/friction_force", SceneKind::Block, false), Some("N_per_m"));
+        assert_eq!(unit_of("contact/friction_force", SceneKind::SpringBlock, false), Some("Pa"));
+        assert_eq!(unit_of("contact/structure", SceneKind::Block, false), None);
+        assert_eq!(unit_of("contact/slip_rate", SceneKind::Block, false), Some("m_per_s"));
+        assert_eq!(unit_of("body/u_y", SceneKind::Block, false), Some("m"));
+        assert_eq!(unit_of("block/v", SceneKind::SpringBlock, false), Some("m_per_s"));
+        assert_eq!(unit_of("contact/friction_force", SceneKind::Mesh, true), Some("N"));
     }
 
     #[test]

@@ -21,9 +21,11 @@ pub const STEP: &str = "step";
 pub const RUN_INFO: &str = "slipfront/run";
 /// Static `TextDocument` (TOML) written last: how the run ended ([`RunEnding`]).
 pub const RUN_ENDING: &str = "slipfront/ending";
-/// Total friction force `Σ w f_t` (N/m; Pa for unit-area scenes).
+/// Total friction force `Σ w f_t` (N/m; N around an axisymmetric ring; Pa for unit-area scenes).
 pub const FRICTION_FORCE: &str = "contact/friction_force";
-/// Displacement of the base along x (m); for a spring-block, of the spring's far end.
+/// Displacement of the base along x (m); for a spring-block, of the spring's far end; for a
+/// mesh, of its first contact's main body along its drive (the direction it first moves in,
+/// or along the contact's tangent where its velocity is given as a speed along it).
 pub const BASE_UX: &str = "base/u_x";
 /// Spring-block displacement (m) and velocity (m/s).
 pub const BLOCK_X: &str = "block/x";
@@ -78,6 +80,8 @@ pub const CONTACT_STATE: &str = "contact/state";
 /// The state values of [`CONTACT_STATE`].
 pub const STICK: &str = "stick";
 pub const SLIP: &str = "slip";
+/// The lane state of an open segment (its contact's normal traction has fallen to 0).
+pub const OPEN: &str = "open";
 /// Profiles along x at the playhead (`BarChart`s over the segments' centres, in m).
 pub const PROFILE: &str = "profile";
 pub const PROFILE_STATIC_STRENGTH: &str = "profile/static_strength";
@@ -328,14 +332,14 @@ pub fn series_plan(layout: &Layout, segments: &[usize], nodes: &[usize], quantit
         labels: vec![label],
         positions: vec![position],
     };
-    plan.push(total(
-        FRICTION_FORCE,
-        Source::FrictionForce,
-        format!("friction force ({})", layout.kind.force_unit()),
-        None,
-    ));
+    plan.push(total(FRICTION_FORCE, Source::FrictionForce, format!("friction force ({})", layout.force_unit()), None));
     let spring = layout.kind == SceneKind::SpringBlock;
-    plan.push(total(BASE_UX, Source::Base, if spring { "spring end u_x (m)" } else { "base u_x (m)" }.into(), None));
+    let base = match layout.kind {
+        SceneKind::SpringBlock => "spring end u_x (m)",
+        SceneKind::Mesh => "main body displacement along its drive (m)",
+        _ => "base u_x (m)",
+    };
+    plan.push(total(BASE_UX, Source::Base, base.into(), None));
     if spring {
         plan.push(total(BLOCK_X, Source::BlockX, "block x (m)".into(), Some(0.0)));
         plan.push(total(BLOCK_V, Source::BlockV, "block v (m/s)".into(), Some(1.0)));
@@ -395,6 +399,14 @@ pub struct RunInfo {
     /// for one.
     #[serde(default)]
     pub contacts: Vec<String>,
+    /// Whether the body is a ring about the y axis: its friction force is a total around the
+    /// circumference, in N.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub axisymmetric: bool,
+    /// The arc length of each recorded segment's centre along its contact (m), for profiles;
+    /// empty in recordings from before it.
+    #[serde(default)]
+    pub segment_centres: Vec<f64>,
 }
 
 impl RunInfo {
@@ -460,7 +472,17 @@ impl RunInfo {
             slip_rate_threshold: plan.slip_rate_threshold,
             stick_every: plan.spec.stick_every,
             contacts: layout.contacts.iter().map(|c| c.name.clone()).collect(),
+            axisymmetric: layout.axisymmetric,
+            segment_centres: segments
+                .iter()
+                .map(|&k| 0.5 * (layout.segments[k].left + layout.segments[k].right))
+                .collect(),
         }
+    }
+
+    /// Unit of the friction force: N around a ring, else the scene kind's.
+    pub fn force_unit(&self) -> &'static str {
+        if self.axisymmetric { "N" } else { self.kind.force_unit() }
     }
 }
 
@@ -484,20 +506,30 @@ impl Decimator {
         Self { threshold: plan.slip_rate_threshold, stick_every: plan.spec.stick_every, t_end: plan.t_end, last: None }
     }
 
-    /// Whether `frame` is recorded (and, if so, remembers it).
+    /// Whether `frame` is recorded (and, if so, remembers it): the first, every step while a
+    /// segment slips, in stick the first step of every `stick_every` (steps `k stick_every`
+    /// when none is skipped), and the frame at `t_end`. The stick steps are counted from step
+    /// 0, not from the last recorded: so the frame at `t_end` shifts none of them, and a run
+    /// extended past its end records the rows a longer run records.
     pub fn keep(&mut self, frame: &Frame) -> bool {
-        let keep = match self.last {
-            None => true,
-            Some(last) => {
-                frame.segments.iter().any(|s| s.slip_rate > self.threshold)
-                    || frame.step >= last + self.stick_every
-                    || frame.time >= self.t_end * (1.0 - 1e-12)
-            }
-        };
+        let keep = self.would_keep(frame);
         if keep {
             self.last = Some(frame.step);
         }
         keep
+    }
+
+    /// Whether [`Self::keep`] would record `frame`, remembering nothing. It reads the frame's
+    /// step, time and slip rates only.
+    pub fn would_keep(&self, frame: &Frame) -> bool {
+        match self.last {
+            None => true,
+            Some(last) => {
+                frame.segments.iter().any(|s| s.slip_rate > self.threshold)
+                    || frame.step / self.stick_every > last / self.stick_every
+                    || frame.time >= self.t_end * (1.0 - 1e-12)
+            }
+        }
     }
 
     /// Whether the run's last frame still has to be recorded (and, if so, remembers it).

@@ -4,7 +4,7 @@
 //! stepped as any body ([`crate::scene::body`]).
 
 use crate::case::{BlockSpec, Case};
-use crate::dynamics::{MainBody, Motion, condensation_pays};
+use crate::dynamics::{MainBody, Motion, NormalBehaviour, condensation_pays};
 use crate::fem::curve::CurvePoint;
 use crate::fem::rectangle::{BOTTOM, TOP};
 use crate::fem::{
@@ -48,22 +48,31 @@ impl BlockScene {
         };
         let base = Motion::constant([spec.base_velocity, 0.0], spec.base_ramp_time);
         let normal_traction = |x: f64| spec.normal_traction.at(x, spec.width);
-        let assembled =
-            block(spec.width, spec.height, spec.nx, spec.ny, material, case.friction.clone(), &normal_traction, base);
+        let assembled = block(
+            spec.width,
+            spec.height,
+            spec.nx,
+            spec.ny,
+            material,
+            case.friction.clone(),
+            (&normal_traction, spec.normal),
+            base,
+        );
         let drawing = MeshDrawing::rectangle(spec.width, spec.height, spec.nx, spec.ny, Some(MOST_LINES));
         let presentation = Presentation {
             kind: SceneKind::Block,
             drawing,
             driving_velocity: spec.base_velocity.abs(),
             contact_names: vec![BOTTOM.into()],
+            axisymmetric: false,
         };
-        build(case, assembled, presentation)
+        build(case, assembled, presentation, None)
     }
 }
 
 /// The paper's block assembled: `W × H` in `nx × ny` bilinear elements of `material`, its top
-/// fixed, its bottom in contact (law `params`, normal traction `normal_traction(x)`) with a base
-/// that moves along x as `base` says.
+/// fixed, its bottom in contact (law `params`, normal traction `normal_traction(x)`, held or
+/// evolving) with a base that moves along x as `base` says.
 #[allow(clippy::too_many_arguments)]
 pub fn block(
     width: f64,
@@ -72,7 +81,7 @@ pub fn block(
     ny: usize,
     material: Material,
     params: FrictionParams,
-    normal_traction: &dyn Fn(f64) -> f64,
+    (normal_traction, normal): (&dyn Fn(f64) -> f64, NormalBehaviour),
     base: Motion,
 ) -> Assembled {
     let mesh = rectangle(width, height, nx, ny);
@@ -94,7 +103,11 @@ pub fn block(
             params,
             main_body: MainBody { motion: base, along_tangent: true },
             normal_traction: Box::new(at),
+            normal,
+            gap: None,
         }],
+        axisymmetric: false,
+        gravity: None,
     };
     assemble(&definition).expect("a block's boundaries share no node")
 }

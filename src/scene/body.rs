@@ -3,8 +3,9 @@
 //! frame shows of it ([`BodyShape`]).
 
 use crate::case::Case;
-use crate::dynamics::{LinearSolver, Settings, System, condensation_pays};
+use crate::dynamics::{LinearSolver, MainBody, Settings, System, condensation_pays};
 use crate::fem::curve::Segment;
+use crate::fem::equilibrium::Equilibrium;
 use crate::fem::{Assembled, Dofs};
 use crate::frame::{ContactInfo, Frame, Layout, MeshDrawing, Needs, NodeInfo, SceneKind, SegmentInfo};
 use crate::scene::dynamic::{DynamicScene, Shape};
@@ -37,11 +38,26 @@ pub struct Presentation {
     pub driving_velocity: f64,
     /// Each contact's name.
     pub contact_names: Vec<String>,
+    /// Whether the body is a ring about the y axis (forces in N, not N/m).
+    pub axisymmetric: bool,
 }
 
-/// Steps an assembled body as `case` asks.
-pub fn build(case: &Case, assembled: Assembled, presentation: Presentation) -> Result<BodyScene, RunError> {
-    let Assembled { body, contact, dofs, contacts } = assembled;
+/// Steps an assembled body as `case` asks, from rest in `equilibrium` where the body has weight
+/// (each loaded contact point's stuck traction under gravity added to its `f0`).
+pub fn build(
+    case: &Case,
+    assembled: Assembled,
+    presentation: Presentation,
+    equilibrium: Option<&Equilibrium>,
+) -> Result<BodyScene, RunError> {
+    let Assembled { body, mut contact, dofs, contacts, .. } = assembled;
+    if let Some(equilibrium) = equilibrium {
+        // An evolving contact starts from the normal traction its springs carry at rest.
+        let initial: Vec<f64> = (0..contact.points.len())
+            .map(|k| crate::case::mesh::initial_normal_traction(&contact, equilibrium, k))
+            .collect();
+        contact.traction_n = initial;
+    }
     let mut contact_unknowns: Vec<usize> =
         contact.points.iter().flat_map(|p| p.tangential.terms().map(|(d, _)| d)).collect();
     contact_unknowns.sort_unstable();
@@ -49,6 +65,9 @@ pub fn build(case: &Case, assembled: Assembled, presentation: Presentation) -> R
     // A large body at a fixed step is condensed onto its contact; adaptive steps change τ
     // every attempt, and each new τ would need the body refactored.
     let fixed = case.time.method.fixed_implicit_steps(case.time.tolerance);
+    // An evolving normal changes the operator's normal springs: the condensation keeps only the
+    // tangential unknowns.
+    let fixed = fixed && !contact.any_evolving();
     let linear_solver = if condensation_pays(body.dofs(), contact_unknowns.len()) && fixed {
         LinearSolver::Condensed
     } else {
@@ -74,7 +93,17 @@ pub fn build(case: &Case, assembled: Assembled, presentation: Presentation) -> R
         drawn: presentation.drawing.1,
         contact_points: if several { contact.surfaces.iter().map(|s| s.points.clone()).collect() } else { Vec::new() },
     };
-    let system = System::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |p| p / 2))?;
+    let mut system = System::new(body, contact, settings).map_err(|e| step_error(e, 0, 0.0, |p| p / 2))?;
+    if let Some(equilibrium) = equilibrium {
+        let tractions: Vec<f64> = system
+            .state
+            .contact
+            .iter()
+            .zip(&equilibrium.traction_t)
+            .map(|(s, g)| if s.traction_n > 0.0 { g + s.traction_t } else { s.traction_t })
+            .collect();
+        system.start_from_tractions(&tractions);
+    }
     Ok(DynamicScene::assemble(case, system, layout, shape))
 }
 
@@ -115,6 +144,8 @@ fn layout(case: &Case, contacts: &[Vec<Segment>], presentation: &Presentation) -
         mesh: Some(presentation.drawing.0.clone()),
         driving_velocity: presentation.driving_velocity,
         instantaneous_slip_rate: case.time.method.instantaneous_slip_rate(),
+        axisymmetric: presentation.axisymmetric,
+        evolving_normal: case.scene.has_evolving_normal(),
     }
 }
 
@@ -128,11 +159,14 @@ impl Shape for BodyShape {
         let points = &system.contact.points;
         let segments = (0..self.segments)
             .map(|k| {
-                segment_sample(
+                let mut sample = segment_sample(
                     system.contact.params(2 * k),
                     (2 * k..2 * k + 2).map(|p| (points[p].weight, s.contact[p], s.slip_rate(p, dt))),
                     needs.segment_state,
-                )
+                );
+                sample.open =
+                    system.contact.evolves(2 * k) && (2 * k..2 * k + 2).all(|p| s.contact[p].traction_n <= 0.0);
+                sample
             })
             .collect();
         let force = |range: std::ops::Range<usize>| -> f64 {
@@ -151,8 +185,23 @@ impl Shape for BodyShape {
             mesh: if needs.mesh { displacement(&self.drawn) } else { Vec::new() },
             friction_force,
             contact_forces,
-            base_displacement: system.contact.surfaces[0].main_body.motion.displacement_at(s.time)[0],
+            base_displacement: drive_displacement(&system.contact.surfaces[0].main_body, s.time),
             block: None,
         }
+    }
+}
+
+/// The displacement of a main body along its drive (m): for a speed along the contact's
+/// tangent (the block's base), its first component, the distance travelled along `t`; for a
+/// velocity `[vx, vy]`, its component along the direction it first moves in (x for one that
+/// never moves).
+fn drive_displacement(main_body: &MainBody, t: f64) -> f64 {
+    let u = main_body.motion.displacement_at(t);
+    match main_body.motion.first_velocity() {
+        Some(v) if !main_body.along_tangent => {
+            let speed = v[0].hypot(v[1]);
+            (u[0] * v[0] + u[1] * v[1]) / speed
+        }
+        _ => u[0],
     }
 }

@@ -39,6 +39,11 @@ pub trait Scene: Send {
     /// Advances by one step of at most `limit` (s) and returns the step taken: all of `limit`
     /// with fixed steps; what the integrator's error control allows with adaptive ones.
     fn advance(&mut self, limit: f64) -> Result<f64, RunError>;
+    /// The longest step the next [`Self::advance`] with `limit` may take
+    /// ([`crate::dynamics::Integrator::longest_next_step`]): `limit` with fixed steps.
+    fn longest_next_step(&self, limit: f64) -> f64 {
+        limit
+    }
     /// What the integrator has counted so far (nothing for scenes without dynamics).
     fn statistics(&self) -> Statistics {
         Statistics::default()
@@ -59,7 +64,16 @@ pub enum SceneMemory {
     Dynamic { system: Box<SystemMemory>, integrator: Box<IntegratorMemory> },
     /// The point scene: its contact state, time, step, last plastic increment and the slip
     /// it has been driven through.
-    Point { state: ContactState, time: f64, step: u64, last_increment: f64, relative_slip: f64 },
+    Point {
+        state: ContactState,
+        time: f64,
+        step: u64,
+        last_increment: f64,
+        relative_slip: f64,
+        /// `∫ v̄_n dt` of an evolving normal traction (m).
+        #[serde(default)]
+        normal_opening: f64,
+    },
 }
 
 impl SceneMemory {

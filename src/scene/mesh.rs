@@ -18,8 +18,10 @@ pub fn scene(case: &Case, spec: &MeshSpec) -> Result<BodyScene, RunError> {
     let presentation = Presentation {
         kind: SceneKind::Mesh,
         drawing: drawing::of_mesh(&loaded.mesh, &assembled.contacts),
-        driving_velocity: spec.driving_velocity(),
+        // A body nothing moves (one settling under its weight) still needs a velocity scale.
+        driving_velocity: case.scene.driving_velocity(),
         contact_names: spec.contacts.iter().map(|c| c.group.clone()).collect(),
+        axisymmetric: spec.axisymmetric,
     };
-    build(case, assembled, presentation)
+    build(case, assembled, presentation, loaded.equilibrium.as_ref())
 }

@@ -47,6 +47,8 @@ impl SpringBlockScene {
             mesh: None,
             driving_velocity: spec.velocity.abs(),
             instantaneous_slip_rate: case.time.method.instantaneous_slip_rate(),
+            axisymmetric: false,
+            evolving_normal: false,
         };
         Ok(DynamicScene::assemble(case, system, layout, SpringBlockShape { velocity: spec.velocity }))
     }

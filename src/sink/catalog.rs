@@ -1,9 +1,11 @@
-//! The event catalog sink: `<stem>.events.csv` and, for a block, `<stem>.ruptures.csv`.
+//! The event catalog sink: `<stem>.events.csv`, for a block `<stem>.ruptures.csv`, and where a
+//! contact's normal traction evolves `<stem>.openings.csv`.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use crate::catalog::events::{Catalog, Rupture, SlipEvent};
+use crate::catalog::openings::Opening;
 use crate::frame::Ending;
 use crate::frame::{Frame, Layout};
 use crate::sink::{Sink, SinkError};
@@ -12,17 +14,28 @@ use crate::sink::{Sink, SinkError};
 pub const EVENTS_HEADER: &str = "segment,onset_s,end_s,slip_m,peak_slip_rate_m_s,traction_before_pa,traction_after_pa";
 /// Header of the ruptures CSV.
 pub const RUPTURES_HEADER: &str = "onset_s,end_s,nucleation_segment,first_segment,last_segment,segments_slipped,max_slip_m,friction_force_drop_n_per_m";
+/// Header of the ruptures CSV of an axisymmetric body, whose forces are totals around the
+/// ring, in N.
+pub const RUPTURES_HEADER_RING: &str =
+    "onset_s,end_s,nucleation_segment,first_segment,last_segment,segments_slipped,max_slip_m,friction_force_drop_n";
+
+/// Header of the openings CSV.
+pub const OPENINGS_HEADER: &str = "contact,onset_s,end_s,closed,first_segment,last_segment,largest_open_length_m";
 
 /// Writes the catalogs when the run ends (completed, failed or interrupted).
 pub struct CatalogSink {
     events_path: PathBuf,
     ruptures_path: Option<PathBuf>,
+    /// Where a contact's normal traction evolves.
+    openings_path: Option<PathBuf>,
+    /// Whether the body is a ring (its force drops in N).
+    ring: bool,
 }
 
 impl CatalogSink {
     /// `ruptures_path` is used for block scenes only.
     pub fn new(events_path: PathBuf, ruptures_path: Option<PathBuf>) -> Self {
-        Self { events_path, ruptures_path }
+        Self { events_path, ruptures_path, openings_path: None, ring: false }
     }
 }
 
@@ -31,10 +44,15 @@ impl Sink for CatalogSink {
         if !layout.kind.has_body() {
             self.ruptures_path = None;
         }
+        self.ring = layout.axisymmetric;
+        self.openings_path = layout.evolving_normal.then(|| openings_path_for(&self.events_path));
         // Fail now, not after the run, if the file cannot be written.
         write_file(&self.events_path, &events_csv(&[]))?;
+        if let Some(path) = &self.openings_path {
+            write_file(path, &openings_csv(&[]))?;
+        }
         if let Some(path) = &self.ruptures_path {
-            write_file(path, &ruptures_csv(&[]))?;
+            write_file(path, &ruptures_csv_in(&[], self.ring))?;
         }
         Ok(())
     }
@@ -46,7 +64,10 @@ impl Sink for CatalogSink {
     fn finish(&mut self, _ending: Ending, _last: Option<&Frame>, catalog: &Catalog) -> Result<(), SinkError> {
         write_file(&self.events_path, &events_csv(&catalog.events))?;
         if let Some(path) = &self.ruptures_path {
-            write_file(path, &ruptures_csv(&catalog.ruptures))?;
+            write_file(path, &ruptures_csv_in(&catalog.ruptures, self.ring))?;
+        }
+        if let Some(path) = &self.openings_path {
+            write_file(path, &openings_csv(&catalog.openings))?;
         }
         Ok(())
     }
@@ -70,9 +91,14 @@ pub fn events_csv(events: &[SlipEvent]) -> String {
     out
 }
 
-/// The ruptures CSV text.
+/// The ruptures CSV text of a plane body (force drops in N/m).
 pub fn ruptures_csv(ruptures: &[Rupture]) -> String {
-    let mut out = String::from(RUPTURES_HEADER);
+    ruptures_csv_in(ruptures, false)
+}
+
+/// The ruptures CSV text; force drops in N around a `ring`, else in N/m.
+pub fn ruptures_csv_in(ruptures: &[Rupture], ring: bool) -> String {
+    let mut out = String::from(if ring { RUPTURES_HEADER_RING } else { RUPTURES_HEADER });
     out.push('\n');
     for r in ruptures {
         let _ = writeln!(
@@ -89,4 +115,21 @@ pub fn ruptures_csv(ruptures: &[Rupture]) -> String {
         );
     }
     out
+}
+
+/// The openings CSV text.
+pub fn openings_csv(openings: &[Opening]) -> String {
+    let mut out = String::from(OPENINGS_HEADER);
+    out.push('\n');
+    for o in openings {
+        let _ = writeln!(out, "{},{},{},{},{}", o.segment, o.onset, o.end, o.closed, o.length);
+    }
+    out
+}
+
+/// `<dir>/<x>.openings.csv` beside `<dir>/<x>.events.csv` (or `<stem>.openings.csv`).
+pub fn openings_path_for(events: &std::path::Path) -> PathBuf {
+    let name = events.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let stem = name.strip_suffix(".events.csv").or_else(|| name.strip_suffix(".csv")).unwrap_or(&name);
+    events.with_file_name(format!("{stem}.openings.csv"))
 }

@@ -6,9 +6,10 @@ use std::collections::BTreeMap;
 
 use rerun::{LineStrips2D, SerializedComponentColumn};
 
-use crate::frame::{Frame, Layout};
+use crate::frame::{Frame, Layout, SegmentSample};
 use crate::record::colormap::{SLIP_RATE, sample};
 use crate::record::schema::{self, RecordingPlan};
+use crate::sink::slip_front::OPEN_COLOUR;
 use crate::sink::spacetime::{TIME_BINS, map_height};
 
 /// One entity's drawing for one frame: its strips, and their colours where they change from
@@ -51,9 +52,13 @@ pub fn log_styles(rec: &rerun::RecordingStream, layout: &Layout) -> rerun::Recor
 }
 
 /// Colour of a contact segment: blue while it sticks, orange to yellow as its slip rate grows
-/// from 1× to 100× the event threshold.
-fn state_colour(rate: f64, threshold: f64) -> [u8; 3] {
-    if rate <= threshold {
+/// from 1× to 100× the event threshold, grey while it is open.
+fn state_colour(segment: &SegmentSample, threshold: f64) -> [u8; 3] {
+    let rate = segment.slip_rate;
+    if segment.open {
+        let [r, g, b, _] = OPEN_COLOUR.to_be_bytes();
+        [r, g, b]
+    } else if rate <= threshold {
         [70, 130, 200]
     } else {
         sample(&SLIP_RATE, 0.55 + 0.45 * ((rate / threshold).log10() / 2.0).clamp(0.0, 1.0))
@@ -77,7 +82,7 @@ fn draw(frame: &Frame, layout: &Layout, plan: &RecordingPlan) -> Vec<(&'static s
             schema::SPATIAL_CONTACT,
             Row {
                 strips: mesh.contact.iter().map(|&[a, b]| vec![at(a), at(b)]).collect(),
-                colours: Some(frame.segments.iter().map(|s| state_colour(s.slip_rate, threshold)).collect()),
+                colours: Some(frame.segments.iter().map(|s| state_colour(s, threshold)).collect()),
             },
         ));
     } else if let Some([x, _]) = frame.block {
@@ -89,7 +94,7 @@ fn draw(frame: &Frame, layout: &Layout, plan: &RecordingPlan) -> Vec<(&'static s
             schema::SPATIAL_CONTACT,
             Row {
                 strips: vec![vec![[left, 0.0], [left + 1.0, 0.0]]],
-                colours: Some(vec![state_colour(frame.segments[0].slip_rate, threshold)]),
+                colours: Some(vec![state_colour(&frame.segments[0], threshold)]),
             },
         ));
         let far = 2.5 + (mag * frame.base_displacement) as f32;

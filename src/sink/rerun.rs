@@ -241,7 +241,7 @@ impl RerunSink {
                         r.end,
                         r.max_slip,
                         r.friction_force_drop,
-                        layout.kind.force_unit()
+                        layout.force_unit()
                     ))
                     .with_level(rerun::TextLogLevel::WARN),
                 )
@@ -304,6 +304,10 @@ impl Sink for RerunSink {
     fn record(&mut self, frame: &Frame) -> Result<(), SinkError> {
         self.seen = frame.step;
         if self.decimator.keep(frame) { self.write_row(frame, false) } else { Ok(()) }
+    }
+
+    fn writes(&self, frame: &Frame) -> bool {
+        self.decimator.would_keep(frame)
     }
 
     fn checkpoint(&mut self) -> Result<SinkMemory, SinkError> {

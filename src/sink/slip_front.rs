@@ -38,6 +38,10 @@ enum Profile {
     Structure,
 }
 
+/// The colour of an open segment, in the lanes and the block view: grey, neither stick's blue
+/// nor slip's orange.
+pub const OPEN_COLOUR: u32 = 0xA0A0A0FF;
+
 /// The state lanes and profiles of a run, buffered between flushes.
 pub struct SlipFront {
     threshold: f64,
@@ -48,7 +52,9 @@ pub struct SlipFront {
     contacts: Vec<(Option<String>, std::ops::Range<usize>)>,
     /// Whether the profiles are written (bodies of more than one segment).
     profiles: bool,
-    last_state: Option<Vec<bool>>,
+    /// Whether a segment can be open (a contact's normal traction evolves).
+    opens: bool,
+    last_state: Option<Vec<&'static str>>,
     state_steps: Vec<i64>,
     state_times: Vec<f64>,
     states: Vec<&'static str>,
@@ -66,6 +72,7 @@ impl SlipFront {
             segments: segments.to_vec(),
             contacts: contacts(layout),
             profiles: layout.kind.has_body() && layout.segments.len() > 1,
+            opens: layout.evolving_normal,
             last_state: None,
             state_steps: Vec::new(),
             state_times: Vec::new(),
@@ -95,13 +102,18 @@ impl SlipFront {
 
     /// Logs the static parts: the lanes' states and colours, the bars' positions and widths.
     pub fn begin(&self, rec: &RecordingStream, layout: &Layout) -> rerun::RecordingStreamResult<()> {
-        rec.log_static(
-            schema::CONTACT_STATE,
-            &StateConfiguration::new()
+        let states = if self.opens {
+            StateConfiguration::new()
+                .with_values([schema::STICK, schema::SLIP, schema::OPEN])
+                .with_labels([" ", "slip", "open"])
+                .with_colors([0x4682C8FF_u32, 0xF0782AFF_u32, OPEN_COLOUR])
+        } else {
+            StateConfiguration::new()
                 .with_values([schema::STICK, schema::SLIP])
                 .with_labels([" ", "slip"])
-                .with_colors([0x4682C8FF_u32, 0xF0782AFF_u32]),
-        )?;
+                .with_colors([0x4682C8FF_u32, 0xF0782AFF_u32])
+        };
+        rec.log_static(schema::CONTACT_STATE, &states)?;
         if !self.profiles {
             return Ok(());
         }
@@ -127,23 +139,38 @@ impl SlipFront {
 
     /// Adds a recorded frame: a state row where a segment changed.
     pub fn push_state(&mut self, frame: &Frame) {
-        let state: Vec<bool> = self.segments.iter().map(|&k| frame.segments[k].slip_rate > self.threshold).collect();
+        let state: Vec<&'static str> = self
+            .segments
+            .iter()
+            .map(|&k| {
+                let s = &frame.segments[k];
+                if s.open {
+                    schema::OPEN
+                } else if s.slip_rate > self.threshold {
+                    schema::SLIP
+                } else {
+                    schema::STICK
+                }
+            })
+            .collect();
         if self.last_state.as_ref() != Some(&state) {
             self.state_steps.push(frame.step as i64);
             self.state_times.push(frame.time);
-            self.states.extend(state.iter().map(|&s| if s { schema::SLIP } else { schema::STICK }));
+            self.states.extend(state.iter().copied());
             self.last_state = Some(state);
         }
     }
 
-    /// Which lanes slipped at the last recorded frame, for a checkpoint.
+    /// Which lanes slipped at the last recorded frame, for a checkpoint (an open lane counts
+    /// as not slipping: a resumed run writes its state again).
     pub fn memory(&self) -> Option<Vec<bool>> {
-        self.last_state.clone()
+        self.last_state.as_ref().map(|s| s.iter().map(|&s| s == schema::SLIP).collect())
     }
 
     /// Continues from [`Self::memory`].
     pub fn resume(&mut self, last_state: Option<Vec<bool>>) {
-        self.last_state = last_state;
+        self.last_state =
+            last_state.map(|s| s.into_iter().map(|slip| if slip { schema::SLIP } else { schema::STICK }).collect());
     }
 
     /// Adds a view frame's profiles.

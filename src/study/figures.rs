@@ -7,11 +7,13 @@
 //!   time (down), on a log colour scale: how ruptures nucleate and propagate.
 //!
 //! Probes are the case's named nodes and segments; without names, up to six recorded ones
-//! spread along the surface.
+//! spread along the surface. A body's contacts have their own figures,
+//! `crate::study::contact_figures`.
 
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use crate::frame::Quantity;
@@ -20,12 +22,12 @@ use crate::inspect::{Recording, Series};
 use crate::record::colormap::{POSITION, SLIP_RATE, sample};
 use crate::record::schema::{self, RunInfo};
 
-const WIDTH: u32 = 1400;
-const HEIGHT: u32 = 800;
+pub(crate) const WIDTH: u32 = 1400;
+pub(crate) const HEIGHT: u32 = 800;
 
 /// Registers the embedded DejaVu Sans as the plots' font (plotters' `ab_glyph` backend reads no
 /// system fonts).
-fn register_font() {
+pub(crate) fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
@@ -40,7 +42,7 @@ struct Line<'a> {
     colour: RGBColor,
 }
 
-/// Writes both figures into `out`; returns their paths.
+/// Writes the figures of Figures 8 and 9 and the space-time map into `out`; returns their paths.
 pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, String> {
     register_font();
     let info: RunInfo = recording
@@ -118,11 +120,22 @@ pub fn write_figures(recording: &Recording, out: &Path) -> Result<Vec<PathBuf>, 
                 .map(|s| (k as f64, s))
         })
         .collect();
-    if rates.is_empty() {
-        return Ok(vec![fig8, fig9]);
+    let mut written = vec![fig8, fig9];
+    if !rates.is_empty() {
+        plot_spacetime(&spacetime, &info, &rates, end)?;
+        written.push(spacetime);
     }
-    plot_spacetime(&spacetime, &info, &rates, end)?;
-    Ok(vec![fig8, fig9, spacetime])
+    Ok(written)
+}
+
+/// The end of the recorded span (s): where `--at` times must lie.
+pub fn recorded_end(recording: &Recording) -> f64 {
+    let t_end = recording
+        .static_texts
+        .get(schema::RUN_INFO)
+        .and_then(|t| toml::from_str::<RunInfo>(t).ok())
+        .map_or(0.0, |info| info.t_end);
+    data_end(recording, t_end)
 }
 
 /// The time axes' end: the last recorded time of any series (a run interrupted or failed ends
@@ -134,7 +147,7 @@ fn data_end(recording: &Recording, t_end: f64) -> f64 {
 
 /// A tick label with as many decimals as ticks `step` apart need to read differently
 /// (`1.4998`, `1.4999`, `1.5000` rather than `1.5` three times).
-fn tick_label(value: f64, step: f64) -> String {
+pub(crate) fn tick_label(value: f64, step: f64) -> String {
     // A step of 9.99999e-6 (a tenth of a span in floating point) is one of 1e-5.
     let decimals = if step > 0.0 && step.is_finite() { (-(step.log10() + 1e-6).floor()).max(0.0) as usize } else { 0 };
     format!("{value:.decimals$}")
@@ -215,32 +228,46 @@ fn plot(path: &Path, panels: &[(&str, &str, &Vec<Line<'_>>)], t_end: f64) -> Res
                 .label_style(("sans-serif", 16))
                 .draw()
                 .map_err(draw_error)?;
-            for line in lines.iter() {
-                let colour = line.colour;
-                chart
-                    .draw_series(LineSeries::new(
-                        line.series.times.iter().copied().zip(line.series.values.iter().copied()),
-                        colour.stroke_width(2),
-                    ))
-                    .map_err(draw_error)?
-                    .label(line.label.clone())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3)));
-            }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperLeft)
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 16))
-                .draw()
-                .map_err(draw_error)?;
+            let curves = lines.iter().map(|line| {
+                let points = line.series.times.iter().copied().zip(line.series.values.iter().copied());
+                (line.label.clone(), line.colour, points)
+            });
+            draw_lines(&mut chart, curves, SeriesLabelPosition::UpperLeft, 16)?;
         }
         root.present().map_err(draw_error)?;
     }
     write_png(path, &pixels)
 }
 
-fn write_png(path: &Path, pixels: &[u8]) -> Result<(), String> {
+/// A chart of `f64` against `f64` on a bitmap (`'a` its drawing area's, `'b` its pixels').
+pub(crate) type Chart<'a, 'b> = ChartContext<'a, BitMapBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Draws each `(label, colour, points)` as a line on `chart`, and their legend at `position` in
+/// `font_size` points.
+pub(crate) fn draw_lines<'a, 'b: 'a, P: Iterator<Item = (f64, f64)>>(
+    chart: &mut Chart<'a, 'b>,
+    lines: impl IntoIterator<Item = (String, RGBColor, P)>,
+    position: SeriesLabelPosition,
+    font_size: u32,
+) -> Result<(), String> {
+    for (label, colour, points) in lines {
+        chart
+            .draw_series(LineSeries::new(points, colour.stroke_width(2)))
+            .map_err(draw_error)?
+            .label(label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(3)));
+    }
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .label_font(("sans-serif", font_size))
+        .draw()
+        .map_err(draw_error)
+}
+
+pub(crate) fn write_png(path: &Path, pixels: &[u8]) -> Result<(), String> {
     let file = std::fs::File::create(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
     let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), WIDTH, HEIGHT);
     encoder.set_color(png::ColorType::Rgb);
@@ -250,7 +277,7 @@ fn write_png(path: &Path, pixels: &[u8]) -> Result<(), String> {
     writer.finish().map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
-fn draw_error(e: impl std::fmt::Display) -> String {
+pub(crate) fn draw_error(e: impl std::fmt::Display) -> String {
     format!("cannot draw the figure: {e}")
 }
 

@@ -2,6 +2,7 @@
 //! or in shards, summarized), figures drawn from a recording, and the replay of an MCAP log
 //! into a recording.
 
+pub mod contact_figures;
 pub mod ensemble;
 pub mod figures;
 pub mod record;

@@ -25,25 +25,40 @@
 //! (its stability function has `|R(iy)| ≤ 1` only up to `y = hω = 0.478`, then 1.00013 at 1,
 //! 1.026 at 2, 1.28 at 3; [`tsit5::amplification`]). Its error control alone would hold `hω` of
 //! the stiffest mode near 1 to 2 and let a stuck contact's ringing grow without bound, so
-//! [`crate::dynamics::method`] also bounds the step by the `hω_max` at which no mode grows more
-//! than 2× over the run ([`tsit5::bounded_growth`]): 17 ms on the paper's 10 × 1 mesh
-//! (`ω_max ≈ 45 rad/s`) over 1000 s.
+//! [`crate::dynamics::method`] also bounds the step by the `hω_max` at which no mode grows faster
+//! than 2× in 1000 s ([`tsit5::bounded_growth`]): 17 ms on the paper's 10 × 1 mesh
+//! (`ω_max ≈ 45 rad/s`). A rate, so that no step depends on when the run ends.
 //!
 //! The exact flow keeps every point's `R ≤ 1` and `1/R*` in `[1, μ_s/μ_k]`; the pair keeps
 //! them only to its local error, so each accepted state is put back on that set where it has
 //! left it, and its rate evaluated again ([`System::project`]).
+//!
+//! Eq. (9)'s switches between loading and unloading are kinks of the right-hand side (its
+//! value continuous, its slope not), and a step across one is rejected by its error estimate.
+//! Tsitouras' pair therefore holds each point on its branch of eq. (6) over a step
+//! ([`System::rate_form_on_branches`], each branch smooth) and ends the step where a point's
+//! switching function (the numerator `N` of eq. 5) changes sign, located along the step's cubic
+//! Hermite interpolant ([`driver`]); the point changes branch there.
 //!
 //! Stick/slip transitions are located, not stepped over: when a step carries a contact point's
 //! plastic slip rate `Λ` across the event threshold, the step is shortened to end just past the
 //! crossing (found by the Illinois variant of regula falsi on `Λ - threshold` with fifth-order
 //! steps from the step's start), so that a frame lies on every onset and every end.
 
+/// How the right-hand side chooses each point's branch of eq. (6).
+enum Switching<'a> {
+    /// By eq. (9) at the point's state, at every evaluation.
+    ByEq9,
+    /// As given, continued past the switch; eq. (9)'s switching function into `numerator`.
+    Held { branches: &'a [bool], numerator: &'a mut [f64] },
+}
+
 pub mod driver;
 pub mod memory;
 pub mod sdirk4;
 pub mod tsit5;
 
-use crate::dynamics::contact::ContactSurface;
+use crate::dynamics::contact::{ContactSurface, NormalBehaviour};
 use crate::dynamics::system::System;
 use crate::friction::{ContactState, law};
 
@@ -57,12 +72,19 @@ impl System {
     pub(crate) fn project(&self, y: &mut [f64]) -> bool {
         let n = self.body.dofs();
         let m = self.contact.points.len();
-        let (traction, structure) = y[2 * n..2 * n + 2 * m].split_at_mut(m);
+        let (u, rest) = y.split_at_mut(2 * n);
+        let (traction, structure) = rest[..2 * m].split_at_mut(m);
         let mut moved = false;
-        for (k, ((f_t, z), &f_n)) in
+        for (k, ((f_t, z), &held)) in
             traction.iter_mut().zip(structure.iter_mut()).zip(&self.contact.traction_n).enumerate()
         {
             let params = self.contact.params(k);
+            let f_n = if self.contact.evolves(k) { self.contact.normal_traction_at(k, &u[..n]) } else { held };
+            if self.contact.evolves(k) && f_n <= 0.0 && *f_t != 0.0 {
+                // Open: no traction.
+                *f_t = 0.0;
+                moved = true;
+            }
             let inside = z.clamp(1.0, params.max_structure());
             if inside != *z {
                 *z = inside;
@@ -79,6 +101,77 @@ impl System {
 
     /// The right-hand side `ẏ = f(t, y)` (module docs); fills `lambda` with each point's `Λ`.
     pub(crate) fn rate_form(&self, t: f64, y: &[f64], rate: &mut [f64], lambda: &mut [f64]) {
+        self.rate_form_switched(t, y, rate, lambda, &mut Switching::ByEq9);
+    }
+
+    /// The right-hand side with each point held on the branch of eq. (6) `branches` names
+    /// (`true`: loading), continued past eq. (9)'s switch
+    /// ([`law::tangential_rate_on_branch`]): smooth in `y`. Fills `lambda` with each point's
+    /// `Λ` and `numerator` with eq. (9)'s switching function `N` (NaN where it does not apply).
+    pub(crate) fn rate_form_on_branches(
+        &self,
+        t: f64,
+        y: &[f64],
+        rate: &mut [f64],
+        lambda: &mut [f64],
+        branches: &[bool],
+        numerator: &mut [f64],
+    ) {
+        self.rate_form_switched(t, y, rate, lambda, &mut Switching::Held { branches, numerator });
+    }
+
+    /// Each point's branch of eq. (6) by eq. (9) at the state `y` at `t` (`true`: loading).
+    pub(crate) fn branches(&self, t: f64, y: &[f64], branches: &mut Vec<bool>) {
+        let n = self.body.dofs();
+        let m = self.contact.points.len();
+        let v = &y[n..2 * n];
+        branches.clear();
+        for surface in &self.contact.surfaces {
+            let base = surface.main_body.motion.velocity_at(t);
+            for i in surface.points.clone() {
+                let point = &self.contact.points[i];
+                let v_t = point.tangential.apply(v) - surface.main_body.along(point, base);
+                branches.push(law::loads(&surface.params, &self.point_state(y, n, m, i), v_t));
+            }
+        }
+    }
+
+    /// Eq. (9)'s switching function `N` (the numerator of eq. 5) at point `i` for the nodal
+    /// velocities `velocity(dof)`, its traction `f_t` and structure `1/R*` at `t`; NaN where
+    /// eq. (9) does not apply.
+    pub(crate) fn switching_at(
+        &self,
+        i: usize,
+        t: f64,
+        velocity: impl Fn(usize) -> f64,
+        traction: f64,
+        structure: f64,
+    ) -> f64 {
+        if self.contact.evolves(i) {
+            // Switched by eq. (9) at every evaluation (see `rate_form_switched`).
+            return f64::NAN;
+        }
+        let point = &self.contact.points[i];
+        let surface = &self.contact.surfaces[point.surface];
+        let base = surface.main_body.motion.velocity_at(t);
+        let v_t =
+            point.tangential.terms().map(|(d, c)| c * velocity(d)).sum::<f64>() - surface.main_body.along(point, base);
+        let state =
+            ContactState { traction_t: traction, traction_n: self.contact.traction_n[i], structure, plastic_slip: 0.0 };
+        law::tangential_rate_on_branch(&surface.params, &state, v_t, false).2
+    }
+
+    /// Point `i`'s friction state in the rate form's vector `y` of `n` unknowns and `m` points.
+    fn point_state(&self, y: &[f64], n: usize, m: usize, i: usize) -> ContactState {
+        ContactState {
+            traction_t: y[2 * n + i],
+            traction_n: self.contact.traction_n[i],
+            structure: y[2 * n + m + i],
+            plastic_slip: y[2 * n + 2 * m + i],
+        }
+    }
+
+    fn rate_form_switched(&self, t: f64, y: &[f64], rate: &mut [f64], lambda: &mut [f64], switching: &mut Switching) {
         let n = self.body.dofs();
         let m = self.contact.points.len();
         let (u, rest) = y.split_at(n);
@@ -99,11 +192,19 @@ impl System {
         let (y_contact, rate_contact) = ((traction, structure, slip), (dtraction, dstructure, dslip));
         let mut out = (rate_contact, &mut *lambda);
         for surface in &self.contact.surfaces {
+            if surface.normal == NormalBehaviour::Evolving {
+                // Switched by eq. (9) at every evaluation; no branch is held over a step.
+                if let Switching::Held { numerator, .. } = switching {
+                    surface.points.clone().for_each(|i| numerator[i] = f64::NAN);
+                }
+                self.evolving_contact_rates(surface, t, (u, v), y_contact, &mut out, dv);
+                continue;
+            }
             match surface.terms {
-                1 => self.contact_rates::<1>(surface, t, v, y_contact, &mut out, dv),
-                2 => self.contact_rates::<2>(surface, t, v, y_contact, &mut out, dv),
-                3 => self.contact_rates::<3>(surface, t, v, y_contact, &mut out, dv),
-                _ => self.contact_rates::<4>(surface, t, v, y_contact, &mut out, dv),
+                1 => self.contact_rates::<1>(surface, t, v, y_contact, &mut out, dv, switching),
+                2 => self.contact_rates::<2>(surface, t, v, y_contact, &mut out, dv, switching),
+                3 => self.contact_rates::<3>(surface, t, v, y_contact, &mut out, dv, switching),
+                _ => self.contact_rates::<4>(surface, t, v, y_contact, &mut out, dv, switching),
             }
         }
         for (a, mass) in dv.iter_mut().zip(&self.body.mass) {
@@ -124,6 +225,7 @@ impl System {
         (traction, structure, slip): (&[f64], &[f64], &[f64]),
         ((dtraction, dstructure, dslip), lambda): &mut ((&mut [f64], &mut [f64], &mut [f64]), &mut [f64]),
         dv: &mut [f64],
+        switching: &mut Switching,
     ) {
         let (params, main_body) = (&surface.params, &surface.main_body);
         let base = main_body.motion.velocity_at(t);
@@ -136,12 +238,60 @@ impl System {
                 structure: structure[i],
                 plastic_slip: slip[i],
             };
-            let r =
-                law::tangential_rate(params, &state, point.tangential.apply_n::<N>(v) - main_body.along(point, base));
-            dtraction[i] = r.rate;
-            dstructure[i] = law::structure_rate(params, structure[i], r.plastic_multiplier);
-            dslip[i] = r.plastic_multiplier;
-            lambda[i] = r.plastic_multiplier;
+            let v_t = point.tangential.apply_n::<N>(v) - main_body.along(point, base);
+            let (rate, multiplier) = match switching {
+                Switching::ByEq9 => law::tangential_rate_and_multiplier(params, &state, v_t, 0.0),
+                Switching::Held { branches, numerator } => {
+                    let (rate, multiplier, n) = law::tangential_rate_on_branch(params, &state, v_t, branches[i]);
+                    numerator[i] = n;
+                    (rate, multiplier)
+                }
+            };
+            dtraction[i] = rate;
+            dstructure[i] = law::structure_rate(params, structure[i], multiplier);
+            dslip[i] = multiplier;
+            lambda[i] = multiplier;
+        }
+    }
+
+    /// [`Self::contact_rates`] for a surface whose normal traction evolves: each point's `f_n`
+    /// from the displacement (`f_n⁰ - α_n (g₀ + n·Ñu)`, [`crate::dynamics::ContactBoundary::normal_traction_at`]),
+    /// its normal force beyond `K`'s spring into `dv`, and `ḟ_t` of eq. (6) with the normal
+    /// sliding velocity `v̄_n = n·Ñv` in eq. (5)'s numerator. An open point transmits nothing
+    /// and its state rests: `ḟ_t = 0`, `d(1/R*)/dt = 0`, `Λ = 0`.
+    #[allow(clippy::type_complexity)]
+    fn evolving_contact_rates(
+        &self,
+        surface: &ContactSurface,
+        t: f64,
+        (u, v): (&[f64], &[f64]),
+        (traction, structure, slip): (&[f64], &[f64], &[f64]),
+        ((dtraction, dstructure, dslip), lambda): &mut ((&mut [f64], &mut [f64], &mut [f64]), &mut [f64]),
+        dv: &mut [f64],
+    ) {
+        let (params, main_body, contact) = (&surface.params, &surface.main_body, &self.contact);
+        let base = main_body.motion.velocity_at(t);
+        for i in surface.points.clone() {
+            let point = &contact.points[i];
+            let f_n = contact.normal_traction_at(i, u);
+            point.normal.scatter(contact.normal_correction(i, f_n, u), dv);
+            if f_n <= 0.0 {
+                (dtraction[i], dstructure[i], dslip[i], lambda[i]) = (0.0, 0.0, 0.0, 0.0);
+                continue;
+            }
+            point.tangential.scatter(point.weight * traction[i], dv);
+            let state = ContactState {
+                traction_t: traction[i],
+                traction_n: f_n,
+                structure: structure[i],
+                plastic_slip: slip[i],
+            };
+            let v_t = point.tangential.apply(v) - main_body.along(point, base);
+            let (rate, multiplier) = law::tangential_rate_and_multiplier(params, &state, v_t, point.normal.apply(v));
+            dtraction[i] = rate;
+            dstructure[i] = law::structure_rate(params, structure[i], multiplier);
+            dslip[i] = multiplier;
+            lambda[i] = multiplier;
         }
     }
 }

@@ -88,8 +88,8 @@ struct PointLinearization {
 impl PointLinearization {
     /// The block of a point in `state`, sliding at `v_t` relative to the base, for `g = hγ`,
     /// from the analytic partials of eqs. (4)–(6).
-    fn at(params: &FrictionParams, state: &ContactState, v_t: f64, g: f64) -> Self {
-        let r = law::tangential_rate(params, state, v_t);
+    fn at(params: &FrictionParams, state: &ContactState, (v_t, v_n): (f64, f64), g: f64) -> Self {
+        let r = law::tangential_rate(params, state, v_t, v_n);
         let lambda = r.plastic_multiplier_partials(params, state);
         // d(1/R*)/dt = -γ κ (1/R* - 1)^m Λ + γ ξ (…)^n (eq. 4).
         let decay = -params.rstar_scale() * params.kappa * law::decay(params, state.structure);
@@ -123,6 +123,10 @@ pub struct Sdirk4 {
     /// `hγ` of the linearization and its points.
     g: f64,
     points: Vec<PointLinearization>,
+    /// Each point's change of its normal spring in the linearization
+    /// ([`crate::dynamics::ContactBoundary::normal_stiffness`]); empty where no normal evolves.
+    #[serde(default)]
+    normal_stiffness: Vec<f64>,
     /// Linearizations (factorizations of the body's operator) so far.
     pub(super) linearizations: u64,
     /// Newton iterations (right-hand sides and solves) so far.
@@ -141,6 +145,7 @@ impl Sdirk4 {
             lambda: vec![0.0; points],
             g: 0.0,
             points: vec![PointLinearization::default(); points],
+            normal_stiffness: Vec::new(),
             linearizations: 0,
             iterations: 0,
         }
@@ -271,23 +276,35 @@ impl Sdirk4 {
         let v = &y[n..2 * n];
         let base = dynamics.contact.base_velocities(t);
         let mut stiffness = Vec::with_capacity(m);
+        let contact = &dynamics.contact;
+        let u = &y[..n];
+        // Evolving normal tractions at y, and an open point's spring taken away; the coupling of
+        // ḟ_t to v̄_n stays out of Newton's matrix (it would be unsymmetric), not of the residual.
+        let normals: Vec<f64> = if contact.any_evolving() {
+            (0..m)
+                .map(|i| if contact.evolves(i) { contact.normal_traction_at(i, u) } else { contact.traction_n[i] })
+                .collect()
+        } else {
+            Vec::new()
+        };
         for (i, point) in dynamics.contact.points.iter().enumerate() {
             let params = dynamics.contact.params(i);
             let mut state = ContactState {
                 traction_t: y[2 * n + i],
-                traction_n: dynamics.contact.traction_n[i],
+                traction_n: normals.get(i).copied().unwrap_or(dynamics.contact.traction_n[i]),
                 structure: y[2 * n + m + i],
                 plastic_slip: y[2 * n + 2 * m + i],
             };
             let v_t = point.interpolate(v) - dynamics.contact.base_along(i, &base);
-            let mut linearization = PointLinearization::at(params, &state, v_t, g);
+            let v_n = if normals.is_empty() { 0.0 } else { point.normal.apply(v) };
+            let mut linearization = PointLinearization::at(params, &state, (v_t, v_n), g);
             if !linearization.is_finite() {
                 // With m < 1 or n < 1, eq. (4)'s powers have infinite slopes at the ends of
                 // 1/R*'s range. Newton's matrix is then taken a hair inside the range; the
                 // residual it corrects stays the exact one.
                 let hair = 1e-9 * (params.max_structure() - 1.0);
                 state.structure = state.structure.clamp(1.0 + hair, params.max_structure() - hair);
-                linearization = PointLinearization::at(params, &state, v_t, g);
+                linearization = PointLinearization::at(params, &state, (v_t, v_n), g);
             }
             self.points[i] = linearization;
             stiffness.push(-point.weight * linearization.traction_follows_velocity);
@@ -295,6 +312,8 @@ impl Sdirk4 {
         if stiffness.iter().any(|k| !k.is_finite()) {
             return Err(StepError::NonFinite);
         }
+        self.normal_stiffness = normals.iter().enumerate().map(|(i, &f_n)| contact.normal_stiffness(i, f_n)).collect();
+        stiffness.extend_from_slice(&self.normal_stiffness);
         self.g = g;
         self.linearizations += 1;
         dynamics.factor_operator(1.0 / (g * g), &stiffness)
@@ -312,6 +331,12 @@ impl Sdirk4 {
         // (M/g² + K + K_c) δv = (M r_v - g K r_u + g Σ w Ñᵀ q_f)/g², q = (I - gL)⁻¹ (r_f, r_z).
         let mut dv = vec![0.0; n];
         dynamics.body.stiffness.mul_vec(ru, &mut dv);
+        // K + K_c along the evolving points' normals (their open springs taken away).
+        for ((point, &k), i) in dynamics.contact.points.iter().zip(&self.normal_stiffness).zip(0..) {
+            if k != 0.0 && dynamics.contact.evolves(i) {
+                point.normal.scatter(k * point.normal.apply(ru), &mut dv);
+            }
+        }
         for ((d, mass), r) in dv.iter_mut().zip(&dynamics.body.mass).zip(rv.iter()) {
             *d = mass * r - g * *d;
         }
@@ -342,8 +367,8 @@ impl Sdirk4 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dynamics::Motion;
     use crate::dynamics::Settings;
+    use crate::dynamics::{Motion, NormalBehaviour};
     use crate::fem::{Assembled, Material, PlaneStrain};
     use crate::friction::FrictionParams;
     use crate::scene::block::block;
@@ -360,7 +385,8 @@ mod tests {
         let params = FrictionParams::paper();
         let traction_n = |x: f64| if x < 0.5 { 0.0 } else { 300.0 + 200.0 * x };
         let base = Motion::constant([1e-3, 0.0], 0.0);
-        let Assembled { body, contact, .. } = block(4.0, 1.0, 4, 2, material, params.clone(), &traction_n, base);
+        let Assembled { body, contact, .. } =
+            block(4.0, 1.0, 4, 2, material, params.clone(), (&traction_n, NormalBehaviour::Held), base);
         let mut dynamics = System::new(body, contact, Settings::default()).unwrap();
         let n = dynamics.body.dofs();
         let m = dynamics.contact.points.len();
