@@ -26,6 +26,11 @@
 //!
 //! Wall times are medians of three runs of the solver and event catalog (no files written),
 //! taken one after another in this process (one run when it takes over 10 s).
+//!
+//! Last, the paper case as `slipfront run cases/paper_triangular.toml` runs it (1000 s, no
+//! integrator named, the release binary as a child process), with its `.rrd` and with
+//! `--no-rrd` in interleaved pairs: CPU time per run and per attempted step, and the
+//! recording's share of it.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -397,6 +402,8 @@ fn main() {
     }
     let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("recordings/bench");
     std::fs::create_dir_all(&out).expect("recordings/bench is writable");
+    eprintln!("paper_triangular: slipfront run, 1000 s, with and without its recording");
+    report.push_str(&paper_case_as_run(if quick { 1 } else { 7 }, &out));
     std::fs::write(out.join("work_precision.md"), &report).expect("the table is written");
     plot_work_precision(&out.join("work_precision.png"), &panels).expect("the plot is written");
     println!("{report}");
@@ -476,4 +483,78 @@ fn equal_error(rows: &[Row], method: &str, metric: Metric) -> String {
         });
     }
     text
+}
+
+/// One `slipfront run` of the paper case (1000 s, no integrator named) as a child process, its
+/// outputs in `out`: the CPU time of the process and its threads (user + system, s, from
+/// `wait4`), and its steps and rejected attempts from the summary it prints.
+fn run_paper_case(extra: &[&str], out: &Path) -> (f64, u64, u64) {
+    use std::io::Read;
+    let case = format!("{}/cases/paper_triangular.toml", env!("CARGO_MANIFEST_DIR"));
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_slipfront"))
+        .args(["run", &case, "--progress", "none", "--out-dir", out.to_str().expect("a UTF-8 path")])
+        .args(extra)
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .expect("slipfront runs");
+    let (mut status, mut usage) = (0, unsafe { std::mem::zeroed::<libc::rusage>() });
+    // SAFETY: waits for our own child, which std has not reaped; `usage` is a plain struct.
+    let reaped = unsafe { libc::wait4(child.id() as libc::pid_t, &mut status, 0, &mut usage) };
+    assert!(reaped > 0 && status == 0, "slipfront run {extra:?} failed (status {status})");
+    let mut summary = String::new();
+    child.stdout.take().expect("piped").read_to_string(&mut summary).expect("the summary is text");
+    let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    let number_before = |text: &str, marker: &str| -> u64 {
+        let head = &text[..text.find(marker).unwrap_or_else(|| panic!("no {marker:?} in {text}"))];
+        head.rsplit(|c: char| !c.is_ascii_digit()).next().and_then(|n| n.parse().ok()).expect("a count")
+    };
+    let steps = number_before(&summary, " steps (adaptive");
+    let rejected = number_before(&summary, " rejected)");
+    (seconds(usage.ru_utime) + seconds(usage.ru_stime), steps, rejected)
+}
+
+/// The paper case as `slipfront run cases/paper_triangular.toml` runs it, with its `.rrd` and
+/// with `--no-rrd`, in `pairs` interleaved pairs of whole processes after one pair not counted:
+/// each one's CPU time (median), per attempted step, and the recording's share (the median of
+/// the pairs' ratios).
+fn paper_case_as_run(pairs: usize, out: &Path) -> String {
+    let scratch = out.join("paper_case_runs");
+    let (mut with, mut without, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
+    let mut counts = (0, 0);
+    for pair in 0..=pairs {
+        let (a, steps, rejected) = run_paper_case(&[], &scratch);
+        let (b, ..) = run_paper_case(&["--no-rrd"], &scratch);
+        counts = (steps, rejected);
+        if pair > 0 {
+            with.push(a);
+            without.push(b);
+            ratios.push(a / b);
+        }
+    }
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let (a, b) = (median(&mut with), median(&mut without));
+    let low = ratios.iter().copied().fold(f64::INFINITY, f64::min);
+    let high = ratios.iter().copied().fold(0.0_f64, f64::max);
+    let ratio = median(&mut ratios);
+    let attempts = counts.0 + counts.1;
+    let _ = std::fs::remove_dir_all(&scratch);
+    format!(
+        "\n## The paper case with no integrator named, as `slipfront run` runs it\n\n\
+         `slipfront run cases/paper_triangular.toml` (1000 s; Tsitouras' pair at tolerance 1e-8), with its `.rrd` \
+         and with `--no-rrd`, {pairs} interleaved pairs of whole processes after one not counted. CPU is user + \
+         system time of the process and its threads (the recording is encoded on a thread of its own).\n\n\
+         | run | steps | rejected | attempts | CPU (s), median | CPU per attempt (µs) |\n|---|---|---|---|---|---|\n\
+         | with its `.rrd` | {} | {} | {attempts} | {a:.3} | {:.2} |\n\
+         | `--no-rrd` | {} | {} | {attempts} | {b:.3} | {:.2} |\n\n\
+         The recording's share: CPU with it over CPU without, {ratio:.3} (median of the pairs; {low:.3} to {high:.3}).\n",
+        counts.0,
+        counts.1,
+        1e6 * a / attempts as f64,
+        counts.0,
+        counts.1,
+        1e6 * b / attempts as f64,
+    )
 }
