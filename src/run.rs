@@ -55,11 +55,12 @@ pub struct LoopOptions<'a> {
 }
 
 /// Checkpoints of a run: after the first step at or past every multiple of `every` simulated
-/// seconds, and after the last step of a completed run, the loop's [`RunMemory`] (the sinks'
-/// files on the disk up to that step) is handed to `save`.
+/// seconds, and at the end of a completed run (after its last step, or before its closing
+/// steps: [`run`]), the loop's [`RunMemory`] (the sinks' files on the disk up to that step)
+/// is handed to `save`, with the time it stands for: the multiple, or `t_end`.
 pub struct Checkpoints<'a> {
     pub every: f64,
-    pub save: &'a mut dyn FnMut(&RunMemory) -> Result<(), String>,
+    pub save: &'a mut dyn FnMut(&RunMemory, f64) -> Result<(), String>,
 }
 
 /// The run loop's state at a checkpoint: the steps taken and the last one's length, the
@@ -98,17 +99,18 @@ struct Observers<'s, 'b> {
 
 impl Observers<'_, '_> {
     /// Hands every sink's buffers to the disk and saves the loop's memory after step `steps`
-    /// (of `dt`) through `checkpoints`.
+    /// (of `dt`) through `checkpoints`, as standing for the time `label`.
     fn checkpoint(
         &mut self,
         scene: &dyn Scene,
         steps: u64,
         dt: f64,
         checkpoints: &mut Checkpoints<'_>,
+        label: f64,
     ) -> Result<(), SinkError> {
         let sinks = self.sinks.iter_mut().map(|sink| sink.checkpoint()).collect::<Result<Vec<_>, _>>()?;
         let memory = RunMemory { steps, last_dt: dt, scene: scene.memory(), detector: self.detector.clone(), sinks };
-        (checkpoints.save)(&memory).map_err(SinkError)
+        (checkpoints.save)(&memory, label).map_err(SinkError)
     }
 
     fn record(&mut self, frame: Frame) -> Result<(), SinkError> {
@@ -132,9 +134,18 @@ impl Observers<'_, '_> {
     }
 }
 
-/// Runs `scene` from its current time to `time.t_end`: in steps of `time.dt` (the last one
-/// shortened to land on `t_end`), or in the steps an adaptive integrator chooses. The loop is
-/// begin → (step → record)* → finish; every sink is finished however the run ends.
+/// Runs `scene` from its current time to `time.t_end`: in steps of `time.dt` (on the grid
+/// `k dt`), or in the steps an adaptive integrator chooses. The loop is begin → (step →
+/// record)* → finish; every sink is finished however the run ends.
+///
+/// **A run's past does not depend on its end.** No step is shortened to land on `t_end`: a
+/// step that may end past it (`t_end` off the grid of `dt`, or an adaptive step longer than
+/// what is left) is taken as a longer run takes it, from a copy of the scene. If it does end
+/// past `t_end`, the scene goes back to that copy, which is the run's last checkpoint, and the
+/// run closes with steps that land on `t_end` ([`close`]). Those closing steps are the only
+/// ones a longer run does not share, and no checkpoint holds them: a finished run extended by
+/// `resume --set time.t_end=...` continues from the copy and takes every step the longer run
+/// takes.
 pub fn run(
     scene: &mut dyn Scene,
     time: &TimeSpec,
@@ -147,7 +158,6 @@ pub fn run(
         Ok(begun) => begun,
         Err(e) => return Outcome::Sink(e),
     };
-    let steps = time.steps();
     let adaptive = time.adaptive_tolerance().is_some();
     let start = Instant::now();
     let mode = if options.progress { options.progress_mode } else { ProgressMode::None };
@@ -155,11 +165,10 @@ pub fn run(
     let mut checkpoints = options.checkpoints.take();
     let mut next_checkpoint = checkpoints.as_ref().map_or(f64::INFINITY, |c| after(scene.time(), c.every));
     let mut last_dt = 0.0;
-    loop {
-        let done = if adaptive { time.t_end - scene.time() <= 1e-9 * time.dt } else { k == steps };
-        if done {
-            break;
-        }
+    // Times within this of t_end are t_end.
+    let slack = 1e-9 * time.dt;
+    let mut closed = false;
+    while time.t_end - scene.time() > slack {
         if options.interrupt.is_some_and(|flag| flag.load(Ordering::SeqCst)) {
             progress.clear();
             return match observers.finish(Ending::Interrupted) {
@@ -167,21 +176,37 @@ pub fn run(
                 Err(e) => Outcome::Sink(e),
             };
         }
-        k += 1;
-        let dt = match scene.advance(step_limit(scene, time, adaptive, k, steps)) {
-            Ok(dt) => dt,
-            Err(error) => {
-                progress.clear();
-                return match observers.finish(Ending::Failed) {
-                    Ok(catalog) => Outcome::Failed { error, catalog },
-                    Err(e) => Outcome::Sink(e),
-                };
+        let limit = step_limit(scene, time, adaptive, k + 1);
+        let before = (scene.time() + scene.longest_next_step(limit) > time.t_end + slack).then(|| scene.memory());
+        let step = scene.advance(limit);
+        if let Some(before) = before
+            && (step.is_err() || scene.time() > time.t_end + slack)
+        {
+            // Past t_end: the run's shared past ends before this step.
+            let closer = Closer { time, needs, slack, last_dt };
+            match closer.close_from(before, scene, &mut observers, &mut k, checkpoints.as_mut(), &mut progress) {
+                Ok(()) => {
+                    closed = true;
+                    break;
+                }
+                Err(Closing::Run(error)) => return failed(&mut progress, observers, error),
+                Err(Closing::Sink(e)) => {
+                    progress.clear();
+                    let _ = observers.finish(Ending::Failed);
+                    return Outcome::Sink(e);
+                }
             }
+        }
+        k += 1;
+        let dt = match step {
+            Ok(dt) => dt,
+            Err(error) => return failed(&mut progress, observers, error),
         };
         last_dt = dt;
         let mut recorded = observers.record(scene.frame(needs, dt));
         if let Some(c) = checkpoints.as_mut().filter(|c| scene.time() >= next_checkpoint - 1e-9 * c.every) {
-            recorded = recorded.and_then(|()| observers.checkpoint(scene, k, dt, c));
+            let label = next_checkpoint;
+            recorded = recorded.and_then(|()| observers.checkpoint(scene, k, dt, c, label));
             next_checkpoint = after(scene.time(), c.every);
         }
         if let Err(e) = recorded {
@@ -192,9 +217,11 @@ pub fn run(
         progress.show(k, scene.time());
     }
     progress.clear();
-    // The end of a completed run is a checkpoint too, from which it can be extended.
-    if let Some(c) = checkpoints.as_mut().filter(|c| next_checkpoint - c.every < scene.time() - 1e-9 * c.every)
-        && let Err(e) = observers.checkpoint(scene, k, last_dt, c)
+    // The end of a completed run is a checkpoint too, from which it can be extended (a closed
+    // run's was written before its closing steps).
+    if let Some(c) =
+        checkpoints.as_mut().filter(|c| !closed && next_checkpoint - c.every < scene.time() - 1e-9 * c.every)
+        && let Err(e) = observers.checkpoint(scene, k, last_dt, c, time.t_end)
     {
         let _ = observers.finish(Ending::Failed);
         return Outcome::Sink(e);
@@ -209,6 +236,65 @@ pub fn run(
             wall: start.elapsed(),
             catalog,
         },
+        Err(e) => Outcome::Sink(e),
+    }
+}
+
+/// Why the closing steps stopped.
+enum Closing {
+    Run(RunError),
+    Sink(SinkError),
+}
+
+/// How a run that stepped past `t_end` ends ([`run`]).
+struct Closer<'t> {
+    time: &'t TimeSpec,
+    needs: Needs,
+    /// Times within this of `t_end` are `t_end`.
+    slack: f64,
+    /// The last shared step's length.
+    last_dt: f64,
+}
+
+impl Closer<'_> {
+    /// Returns the scene to `before` (the state after step `k`, the last a longer run shares),
+    /// writes the run's last checkpoint there, and closes the run with steps of at most what is
+    /// left, each recorded, until `t_end`. Nothing continues from the closing steps.
+    fn close_from(
+        &self,
+        before: SceneMemory,
+        scene: &mut dyn Scene,
+        observers: &mut Observers<'_, '_>,
+        k: &mut u64,
+        checkpoints: Option<&mut Checkpoints<'_>>,
+        progress: &mut Progress,
+    ) -> Result<(), Closing> {
+        scene.restore(before).map_err(|message| {
+            Closing::Run(RunError {
+                step: *k + 1,
+                time: scene.time(),
+                segment: None,
+                message: format!("cannot return to the state before the step past t_end: {message}"),
+            })
+        })?;
+        if let Some(c) = checkpoints {
+            observers.checkpoint(scene, *k, self.last_dt, c, self.time.t_end).map_err(Closing::Sink)?;
+        }
+        while self.time.t_end - scene.time() > self.slack {
+            *k += 1;
+            let dt = scene.advance(self.time.t_end - scene.time()).map_err(Closing::Run)?;
+            observers.record(scene.frame(self.needs, dt)).map_err(Closing::Sink)?;
+            progress.show(*k, scene.time());
+        }
+        Ok(())
+    }
+}
+
+/// Finishes the sinks of a run whose step failed.
+fn failed(progress: &mut Progress, observers: Observers<'_, '_>, error: RunError) -> Outcome {
+    progress.clear();
+    match observers.finish(Ending::Failed) {
+        Ok(catalog) => Outcome::Failed { error, catalog },
         Err(e) => Outcome::Sink(e),
     }
 }
@@ -266,12 +352,8 @@ fn begin<'s, 'b>(
     Ok((observers, needs))
 }
 
-/// The most step `k` of `steps` may take: with fixed steps, to `k dt` exactly (no drift) and
-/// the last one to `t_end`; with adaptive ones, the rest of the span.
-fn step_limit(scene: &dyn Scene, time: &TimeSpec, adaptive: bool, k: u64, steps: u64) -> f64 {
-    if adaptive {
-        return time.t_end - scene.time();
-    }
-    let target = if k == steps { time.t_end } else { k as f64 * time.dt };
-    target - scene.time()
+/// The most step `k` may take: with fixed steps, to `k dt` exactly (no drift); with adaptive
+/// ones, no limit (the error control chooses). Never shortened to `t_end` ([`run`]).
+fn step_limit(scene: &dyn Scene, time: &TimeSpec, adaptive: bool, k: u64) -> f64 {
+    if adaptive { f64::INFINITY } else { k as f64 * time.dt - scene.time() }
 }

@@ -238,7 +238,6 @@ impl Case {
             dt_max: time.dt_max(),
             dt_min: time.dt_min(),
             slip_rate_threshold: self.slip_rate_threshold(),
-            span: time.t_end,
         }
     }
 }

@@ -1,5 +1,6 @@
 //! Writing checkpoints for `slipfront run --checkpoint-every` and `slipfront resume`: where they
-//! go (`<out-dir>/<stem>.ckpt`, and with `--keep-checkpoints` `<stem>.<T>s.ckpt` besides, T the multiple of the interval),
+//! go (`<out-dir>/<stem>.ckpt`, and with `--keep-checkpoints` `<stem>.<T>s.ckpt` besides, T the multiple of the
+//! interval, or `t_end` for the run's last),
 //! what run they describe, and what they cost.
 
 use std::path::{Path, PathBuf};
@@ -70,16 +71,13 @@ impl Saver {
         Self { staged: true, ..self }
     }
 
-    /// Writes `memory` as the latest checkpoint (and, when kept, under its time).
-    pub fn save(&mut self, memory: &RunMemory) -> Result<(), String> {
+    /// Writes `memory` as the latest checkpoint (and, when kept, under `label`, the time it
+    /// stands for: the multiple of the interval it was taken after, or the run's `t_end`).
+    pub fn save(&mut self, memory: &RunMemory, label: f64) -> Result<(), String> {
         let start = Instant::now();
-        let (time, _) = memory.scene.time_and_step();
-        // Named by the multiple of the interval it was taken at (after the first step reaching
-        // it), to 6 significant digits: `300s` for a checkpoint at 300.007 s, not
+        // Named to 6 significant digits: `300s` for a checkpoint at 300.007 s, not
         // `300.00000000000006s`; the exact time is inside, and `resume` prints it.
-        let every = self.info.every;
-        let multiple = ((time / every) * (1.0 + 1e-12)).floor() * every;
-        let label: f64 = format!("{multiple:.5e}").parse().unwrap_or(multiple);
+        let label: f64 = format!("{label:.5e}").parse().unwrap_or(label);
         let kept = self.keep.then(|| self.path.with_file_name(format!("{}.{label}s.ckpt", self.info.case.stem)));
         if let Some(kept) = kept.as_ref().filter(|k| k.exists() && !k.is_file()) {
             return Err(format!("cannot keep the checkpoint as {}: it is not a file", kept.display()));

@@ -52,13 +52,13 @@ pub(crate) fn print(text: &str) -> Result<(), ExitCode> {
     }
 }
 
-/// Compacts a finished recording ([`crate::record::compact`]); a failure leaves the file as the
-/// run wrote it, which is complete, and is said on stderr.
+/// Compacts a finished recording of many chunks ([`crate::record::compact::compact_if_worthwhile`]);
+/// a failure leaves the file as the run wrote it, which is complete, and is said on stderr.
 pub(crate) fn compact_recording(path: &std::path::Path) {
     if !path.is_file() {
         return;
     }
-    if let Err(e) = crate::record::compact::compact(path) {
+    if let Err(e) = crate::record::compact::compact_if_worthwhile(path) {
         eprintln!("slipfront: {e}; {} is kept as written, in its small chunks", path.display());
     }
 }

@@ -90,7 +90,7 @@ pub fn command(args: ResumeArgs) -> ExitCode {
     };
     let saved = CheckpointInfo { every, outputs: outputs.saved(&out_dir), ..info.clone() };
     let mut saver = Saver::new(&out_dir, saved, args.keep_checkpoints).staged();
-    let mut save = |memory: &RunMemory| saver.save(memory);
+    let mut save = |memory: &RunMemory, label: f64| saver.save(memory, label);
     let (from_time, from_step) = checkpoint.time_and_step();
     let stop = Stop::catch();
     let outcome = run(

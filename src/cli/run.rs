@@ -102,7 +102,7 @@ pub fn command(args: RunArgs) -> ExitCode {
         Err(exit) => return exit,
     };
     let stop = Stop::catch();
-    let mut save = |memory: &RunMemory| saver.as_mut().map_or(Ok(()), |s| s.save(memory));
+    let mut save = |memory: &RunMemory, label: f64| saver.as_mut().map_or(Ok(()), |s| s.save(memory, label));
     let checkpoints = outputs.every.map(|every| Checkpoints { every, save: &mut save });
     let outcome = run(
         scene.as_mut(),

@@ -50,18 +50,22 @@ impl LoadHistory {
 }
 
 /// The external load at one instant, read per degree of freedom ([`LinearBody::load_at`]).
-pub struct LoadAt<'a> {
-    terms: Vec<(&'a [f64], f64)>,
+/// Without allocating for none or one load: the rate form's right-hand side asks for it at
+/// every stage.
+pub enum LoadAt<'a> {
+    None,
+    One(&'a [f64], f64),
+    Several(Vec<(&'a [f64], f64)>),
 }
 
 impl LoadAt<'_> {
     /// `f⁰_i(t)`: `+0` without loads.
     #[inline]
     pub fn at(&self, i: usize) -> f64 {
-        match self.terms.as_slice() {
-            [] => 0.0,
-            [(pattern, g)] => pattern[i] * g,
-            terms => terms.iter().map(|(pattern, g)| pattern[i] * g).sum(),
+        match self {
+            LoadAt::None => 0.0,
+            LoadAt::One(pattern, g) => pattern[i] * g,
+            LoadAt::Several(terms) => terms.iter().map(|(pattern, g)| pattern[i] * g).sum(),
         }
     }
 }
@@ -79,7 +83,11 @@ impl LinearBody {
 
     /// The external load `f⁰(t)`, to be read per degree of freedom.
     pub fn load_at(&self, t: f64) -> LoadAt<'_> {
-        LoadAt { terms: self.loads.iter().map(|l| (l.pattern.as_slice(), l.history.at(t))).collect() }
+        match self.loads.as_slice() {
+            [] => LoadAt::None,
+            [l] => LoadAt::One(&l.pattern, l.history.at(t)),
+            loads => LoadAt::Several(loads.iter().map(|l| (l.pattern.as_slice(), l.history.at(t))).collect()),
+        }
     }
 
     /// Kinetic energy `½ vᵀ M v`.

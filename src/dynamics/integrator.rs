@@ -22,6 +22,14 @@ pub trait Integrator: Send {
     /// that the next step is the one the saved run would have taken.
     fn restore(&mut self, system: &System, memory: IntegratorMemory) -> Result<(), String>;
 
+    /// The longest step the next [`Self::advance`] with `limit` may take: `limit` for the
+    /// fixed-step methods, the step the error control will try first for the adaptive ones
+    /// (a rejection or a located crossing only shortens it). The run loop asks, so that it
+    /// keeps the state before a step that may end past `t_end` (`crate::run`).
+    fn longest_next_step(&self, limit: f64) -> f64 {
+        limit
+    }
+
     /// What the method has counted so far.
     fn statistics(&self) -> Statistics {
         Statistics::default()

@@ -102,6 +102,10 @@ impl Integrator for StepDoubling {
         }
     }
 
+    fn longest_next_step(&self, limit: f64) -> f64 {
+        self.control.next.min(limit)
+    }
+
     fn statistics(&self) -> Statistics {
         self.statistics
     }

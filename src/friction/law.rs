@@ -196,8 +196,29 @@ impl TangentialRate {
     }
 }
 
-/// [`traction_rate`] for `v̄ = (v̄_t, 0)`, tangential component, with partial derivatives.
-pub fn tangential_rate(params: &FrictionParams, state: &ContactState, v_t: f64) -> TangentialRate {
+/// What eqs. (5) and (9) give at a loading point, and the terms its partials reuse.
+struct Loading {
+    sigma: f64,
+    structure: f64,
+    mu_f: f64,
+    gamma: f64,
+    ratio: f64,
+    /// `-ln R`.
+    u: f64,
+    healing: f64,
+    decay: f64,
+    denominator: f64,
+    /// `Λ > 0`.
+    lambda: f64,
+}
+
+/// `Λ` of eq. (5) for `v̄ = (v̄_t, 0)` where it is positive (eq. 9: loading); otherwise the
+/// rate of eq. (6) that holds instead: unloading (`ḟ_t = -α_t v̄_t`), or nothing transmitted
+/// without normal traction. `-ln R` is evaluated only where loading is possible: a numerator
+/// `N ≤ 0` over a denominator that is positive whatever `ln R` (`R ≤ 1` and
+/// `α_t > γ κ R (1/R* - 1)^m μ_k f_n`) is unloading, as `N/D` would say.
+#[inline(always)]
+fn loading(params: &FrictionParams, state: &ContactState, v_t: f64) -> Result<Loading, TangentialRate> {
     let elastic = TangentialRate {
         rate: -params.alpha_t * v_t,
         plastic_multiplier: 0.0,
@@ -207,31 +228,56 @@ pub fn tangential_rate(params: &FrictionParams, state: &ContactState, v_t: f64) 
     };
     if state.traction_n <= 0.0 {
         // No normal traction: nothing is transmitted.
-        return TangentialRate {
+        return Err(TangentialRate {
             rate: 0.0,
             plastic_multiplier: 0.0,
             d_velocity: 0.0,
             d_traction: 0.0,
             d_structure: 0.0,
-        };
+        });
     }
     if state.traction_t == 0.0 {
-        return elastic;
+        return Err(elastic);
     }
     let sigma = state.direction();
     let z = state.structure;
     let mu_f = params.mu_k * state.traction_n;
     let gamma = params.rstar_scale();
     let ratio = state.sliding_ratio(params);
-    let u = -ratio.ln();
     let h = healing(params, z);
     let g = decay(params, z);
     let numer = -params.alpha_t * sigma * v_t - gamma * params.xi * ratio * h * mu_f;
-    let denom = params.alpha_t + params.r * u * z * mu_f - gamma * params.kappa * ratio * g * mu_f;
+    let softening = gamma * params.kappa * ratio * g * mu_f;
+    if numer <= 0.0 && ratio <= 1.0 && params.alpha_t > softening {
+        return Err(elastic);
+    }
+    let u = -ratio.ln();
+    let denom = params.alpha_t + params.r * u * z * mu_f - softening;
     let lambda = numer / denom;
     if lambda <= 0.0 {
-        return elastic;
+        return Err(elastic);
     }
+    Ok(Loading { sigma, structure: z, mu_f, gamma, ratio, u, healing: h, decay: g, denominator: denom, lambda })
+}
+
+/// `ḟ_t` of eq. (6) switched by eq. (9) and `Λ` (eq. 5, clipped at 0) for `v̄ = (v̄_t, 0)`:
+/// [`tangential_rate`] without its partial derivatives, which an explicit integrator does not
+/// use (the rate form's right-hand side evaluates it at every contact point of every stage).
+#[inline(always)]
+pub fn tangential_rate_and_multiplier(params: &FrictionParams, state: &ContactState, v_t: f64) -> (f64, f64) {
+    match loading(params, state, v_t) {
+        Ok(l) => (-params.alpha_t * v_t - params.alpha_t * l.sigma * l.lambda, l.lambda),
+        Err(other) => (other.rate, other.plastic_multiplier),
+    }
+}
+
+/// [`traction_rate`] for `v̄ = (v̄_t, 0)`, tangential component, with partial derivatives.
+pub fn tangential_rate(params: &FrictionParams, state: &ContactState, v_t: f64) -> TangentialRate {
+    let l = match loading(params, state, v_t) {
+        Ok(l) => l,
+        Err(other) => return other,
+    };
+    let Loading { sigma, structure: z, mu_f, gamma, ratio, u, healing: h, decay: g, denominator: denom, lambda } = l;
     // Partials of N and D with respect to R and to 1/R* at fixed R.
     let dn_dratio = -gamma * params.xi * h * mu_f;
     let dn_dz = -gamma * params.xi * ratio * healing_slope(params, z) * mu_f;

@@ -71,6 +71,37 @@ fn u64_at(bytes: &[u8]) -> u64 {
 /// 16-byte header (`kind`, `len`, little-endian u64) and `len` bytes; after the `End` message
 /// (kind 0) a 32-byte stream footer, and possibly another stream.
 pub fn rrd(input: &mut impl ReadAt, total: u64) -> Plausible {
+    walk_rrd(input, total, |input, kind, pos, len| {
+        if kind == ARROW_MSG
+            && let Some(problem) = arrow_problem(input, pos + 16, len)
+        {
+            return Err(Plausible {
+                len: pos,
+                problem: Some(format!("the message at byte {pos}: {problem}; read up to it")),
+            });
+        }
+        Ok(())
+    })
+}
+
+/// How many `ArrowMsg` messages (chunks) the plausible prefix of an `.rrd` holds, from their
+/// headers alone.
+pub fn rrd_chunks(input: &mut impl ReadAt, total: u64) -> u64 {
+    let mut chunks = 0;
+    walk_rrd(input, total, |_, kind, _, _| {
+        chunks += u64::from(kind == ARROW_MSG);
+        Ok(())
+    });
+    chunks
+}
+
+/// Walks the messages of [`rrd`]'s framing, handing each `(kind, header position, len)` whose
+/// length fits the input to `message`, which may stop the walk with its own verdict.
+fn walk_rrd<R: ReadAt>(
+    input: &mut R,
+    total: u64,
+    mut message: impl FnMut(&mut R, u64, u64, u64) -> Result<(), Plausible>,
+) -> Plausible {
     let whole = Plausible { len: total, problem: None };
     let mut pos = 0u64;
     'streams: loop {
@@ -81,11 +112,11 @@ pub fn rrd(input: &mut impl ReadAt, total: u64) -> Plausible {
         }
         pos += 12;
         loop {
-            let mut message = [0u8; 16];
-            if !input.read_at(pos, &mut message) {
+            let mut head = [0u8; 16];
+            if !input.read_at(pos, &mut head) {
                 return whole;
             }
-            let (kind, len) = (u64_at(&message[..8]), u64_at(&message[8..]));
+            let (kind, len) = (u64_at(&head[..8]), u64_at(&head[8..]));
             if kind > 3 {
                 // The decoder takes an unknown kind for the start of a concatenated stream.
                 continue 'streams;
@@ -99,13 +130,8 @@ pub fn rrd(input: &mut impl ReadAt, total: u64) -> Plausible {
                     )),
                 };
             }
-            if kind == ARROW_MSG
-                && let Some(problem) = arrow_problem(input, pos + 16, len)
-            {
-                return Plausible {
-                    len: pos,
-                    problem: Some(format!("the message at byte {pos}: {problem}; read up to it")),
-                };
+            if let Err(verdict) = message(input, kind, pos, len) {
+                return verdict;
             }
             pos += 16 + len;
             if kind == 0 {

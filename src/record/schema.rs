@@ -484,13 +484,17 @@ impl Decimator {
         Self { threshold: plan.slip_rate_threshold, stick_every: plan.spec.stick_every, t_end: plan.t_end, last: None }
     }
 
-    /// Whether `frame` is recorded (and, if so, remembers it).
+    /// Whether `frame` is recorded (and, if so, remembers it): the first, every step while a
+    /// segment slips, in stick the first step of every `stick_every` (steps `k stick_every`
+    /// when none is skipped), and the frame at `t_end`. The stick steps are counted from step
+    /// 0, not from the last recorded: so the frame at `t_end` shifts none of them, and a run
+    /// extended past its end records the rows a longer run records.
     pub fn keep(&mut self, frame: &Frame) -> bool {
         let keep = match self.last {
             None => true,
             Some(last) => {
                 frame.segments.iter().any(|s| s.slip_rate > self.threshold)
-                    || frame.step >= last + self.stick_every
+                    || frame.step / self.stick_every > last / self.stick_every
                     || frame.time >= self.t_end * (1.0 - 1e-12)
             }
         };

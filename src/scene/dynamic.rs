@@ -61,6 +61,10 @@ impl<S: Shape> Scene for DynamicScene<S> {
         })
     }
 
+    fn longest_next_step(&self, limit: f64) -> f64 {
+        self.integrator.longest_next_step(limit)
+    }
+
     fn statistics(&self) -> Statistics {
         self.integrator.statistics()
     }

@@ -39,6 +39,11 @@ pub trait Scene: Send {
     /// Advances by one step of at most `limit` (s) and returns the step taken: all of `limit`
     /// with fixed steps; what the integrator's error control allows with adaptive ones.
     fn advance(&mut self, limit: f64) -> Result<f64, RunError>;
+    /// The longest step the next [`Self::advance`] with `limit` may take
+    /// ([`crate::dynamics::Integrator::longest_next_step`]): `limit` with fixed steps.
+    fn longest_next_step(&self, limit: f64) -> f64 {
+        limit
+    }
     /// What the integrator has counted so far (nothing for scenes without dynamics).
     fn statistics(&self) -> Statistics {
         Statistics::default()

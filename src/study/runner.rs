@@ -250,7 +250,7 @@ fn run_member(
     drop(sinks);
     if study.recordings && rrd.is_file() {
         // A compaction that fails leaves the recording as written, which is complete.
-        let _ = crate::record::compact::compact(&rrd);
+        let _ = crate::record::compact::compact_if_worthwhile(&rrd);
     }
     let segments = layout.segments.len();
     let (mut written, catalog) = match outcome {

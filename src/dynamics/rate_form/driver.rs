@@ -33,8 +33,10 @@ impl Pair {
     }
 }
 
-/// One trial step: the new state, its rate and `Λ` there, and the error.
-struct Trial {
+/// One trial step: the new state, its rate and `Λ` there, and the error. Its vectors are
+/// buffers that the driver hands round ([`RungeKutta::spare`]), so that no step allocates.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Trial {
     y: Vec<f64>,
     rate: Vec<f64>,
     lambda: Vec<f64>,
@@ -99,6 +101,10 @@ impl Integrator for RateForm {
         Ok(())
     }
 
+    fn longest_next_step(&self, limit: f64) -> f64 {
+        self.control.next.min(limit)
+    }
+
     fn statistics(&self) -> Statistics {
         self.statistics
     }
@@ -116,21 +122,25 @@ fn attempts(
     let scaling = rk.pair.scaling();
     let tolerance = control.tolerance;
     let mut rejected = false;
+    let mut trial = rk.spare();
     loop {
         let h = control.next.min(limit);
         // A failed implicit solve counts as an infinite error: the step shrinks.
-        let (trial, failure) = match rk.trial(system, t, h, tolerance) {
-            Ok(trial) => (Some(trial), None),
-            Err(failure) => (None, Some(failure)),
-        };
-        let error = trial.as_ref().map_or(f64::INFINITY, |trial| trial.error);
-        if let Some(trial) = trial.filter(|_| error <= tolerance) {
+        let failure = rk.trial(system, t, h, tolerance, &mut trial).err();
+        let error = if failure.is_none() { trial.error } else { f64::INFINITY };
+        if error <= tolerance {
             statistics.accepted += 1;
             control.next = control.resize(h, error, scaling);
             if rejected {
                 control.next = control.next.min(h);
             }
-            let (h, trial) = rk.crossing(system, t, h, &trial, threshold, tolerance).unwrap_or((h, trial));
+            let (h, trial) = match rk.crossing(system, t, h, &trial, threshold, tolerance) {
+                Some((located, past)) => {
+                    rk.give_back(trial);
+                    (located, past)
+                }
+                None => (h, trial),
+            };
             accept(system, rk, t + h, trial);
             return Ok(h);
         }
@@ -147,7 +157,7 @@ fn attempts(
     }
 }
 
-/// Makes `trial`, reached at `time`, the state.
+/// Makes `trial`, reached at `time`, the state; the vectors it replaces become a spare.
 fn accept(system: &mut System, rk: &mut RungeKutta, time: f64, mut trial: Trial) {
     if system.project(&mut trial.y) {
         system.rate_form(time, &trial.y, &mut trial.rate, &mut trial.lambda);
@@ -169,9 +179,10 @@ fn accept(system: &mut System, rk: &mut RungeKutta, time: f64, mut trial: Trial)
     s.time = time;
     s.step += 1;
     rk.at = (s.step, s.time);
-    rk.y = trial.y;
-    rk.rate = trial.rate;
-    rk.lambda = trial.lambda;
+    std::mem::swap(&mut rk.y, &mut trial.y);
+    std::mem::swap(&mut rk.rate, &mut trial.rate);
+    std::mem::swap(&mut rk.lambda, &mut trial.lambda);
+    rk.give_back(trial);
 }
 
 impl RungeKutta {
@@ -216,7 +227,17 @@ impl RungeKutta {
             Tableau::Tsit5 => Pair::Tsit5(Tsit5::new(len)),
             Tableau::Sdirk4 => Pair::Sdirk4(Box::new(Sdirk4::new(len, m))),
         };
-        Self { at: (s.step, s.time), y, rate, lambda, scale, pair }
+        Self { at: (s.step, s.time), y, rate, lambda, scale, pair, spares: Vec::new() }
+    }
+
+    /// A trial's buffers: one handed back earlier, or new ones.
+    fn spare(&mut self) -> Trial {
+        self.spares.pop().unwrap_or_default()
+    }
+
+    /// Keeps `trial`'s buffers for a later [`Self::spare`].
+    fn give_back(&mut self, trial: Trial) {
+        self.spares.push(trial);
     }
 
     /// Whether this memory, saved in a checkpoint, fits `dynamics` stepped by `tableau`.
@@ -237,24 +258,36 @@ impl RungeKutta {
         }
     }
 
-    /// One step of `h` from the current state at `t`; `tolerance` is the error allowed per step.
-    /// Fails where an implicit method's solve does.
-    fn trial(&mut self, dynamics: &mut System, t: f64, h: f64, tolerance: f64) -> Result<Trial, StepError> {
-        match &mut self.pair {
+    /// One step of `h` from the current state at `t` into `out`; `tolerance` is the error
+    /// allowed per step. Fails where an implicit method's solve does.
+    fn trial(
+        &mut self,
+        dynamics: &mut System,
+        t: f64,
+        h: f64,
+        tolerance: f64,
+        out: &mut Trial,
+    ) -> Result<(), StepError> {
+        out.lambda.resize(self.lambda.len(), 0.0);
+        let (error, y, rate) = match &mut self.pair {
             Pair::Tsit5(pair) => {
-                let mut lambda = vec![0.0; self.lambda.len()];
-                let error = pair.step(&self.y, &self.rate, t, h, &self.scale, |t, y, rate| {
-                    dynamics.rate_form(t, y, rate, &mut lambda)
-                });
-                let (y, rate) = (pair.solution().to_vec(), pair.solution_rate().to_vec());
-                Ok(Trial { y, rate, lambda, error })
+                let lambda = &mut out.lambda;
+                let error = pair
+                    .step(&self.y, &self.rate, t, h, &self.scale, |t, y, rate| dynamics.rate_form(t, y, rate, lambda));
+                (error, pair.solution(), pair.solution_rate())
             }
             Pair::Sdirk4(pair) => {
                 let error = pair.step(dynamics, &self.y, &self.rate, t, h, &self.scale, tolerance)?;
-                let (y, rate) = (pair.solution().to_vec(), pair.solution_rate().to_vec());
-                Ok(Trial { y, rate, lambda: pair.solution_lambda().to_vec(), error })
+                out.lambda.copy_from_slice(pair.solution_lambda());
+                (error, pair.solution(), pair.solution_rate())
             }
-        }
+        };
+        out.error = error;
+        out.y.clear();
+        out.y.extend_from_slice(y);
+        out.rate.clear();
+        out.rate.extend_from_slice(rate);
+        Ok(())
     }
 
     /// If the accepted `trial` of `h` from `t` carries some point's `Λ` across `level`, the
@@ -284,6 +317,7 @@ impl RungeKutta {
         let (mut lo, mut g_lo) = (0.0, g(&self.lambda));
         let (mut hi, mut g_hi) = (h, g(&trial.lambda));
         let mut past: Option<Trial> = None;
+        let mut attempt = self.spare();
         let mut kept = 0_i32;
         for _ in 0..MAX_LOCATING_STEPS {
             if hi - lo <= 4.0 * f64::EPSILON * (t + hi).abs() {
@@ -293,7 +327,9 @@ impl RungeKutta {
             if !(s > lo && s < hi) {
                 s = 0.5 * (lo + hi);
             }
-            let Ok(attempt) = self.trial(dynamics, t, s, tolerance) else { break };
+            if self.trial(dynamics, t, s, tolerance, &mut attempt).is_err() {
+                break;
+            }
             let value = g(&attempt.lambda);
             if !value.is_finite() {
                 break;
@@ -308,13 +344,15 @@ impl RungeKutta {
             } else {
                 hi = s;
                 g_hi = value;
-                past = Some(attempt);
+                let spare = past.replace(attempt).unwrap_or_else(|| self.spare());
+                attempt = spare;
                 if kept == 1 {
                     g_lo *= 0.5;
                 }
                 kept = 1;
             }
         }
+        self.give_back(attempt);
         past.map(|trial| (hi, trial))
     }
 }

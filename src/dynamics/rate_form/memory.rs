@@ -17,6 +17,9 @@ pub struct RungeKutta {
     /// Physical scale of each component, added to its size in the error measure.
     pub(super) scale: Vec<f64>,
     pub(super) pair: Pair,
+    /// Buffers of trial steps, kept so that no step allocates (not state).
+    #[serde(skip)]
+    pub(super) spares: Vec<super::driver::Trial>,
 }
 
 /// A method with its workspace.

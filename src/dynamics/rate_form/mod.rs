@@ -136,12 +136,15 @@ impl System {
                 structure: structure[i],
                 plastic_slip: slip[i],
             };
-            let r =
-                law::tangential_rate(params, &state, point.tangential.apply_n::<N>(v) - main_body.along(point, base));
-            dtraction[i] = r.rate;
-            dstructure[i] = law::structure_rate(params, structure[i], r.plastic_multiplier);
-            dslip[i] = r.plastic_multiplier;
-            lambda[i] = r.plastic_multiplier;
+            let (rate, multiplier) = law::tangential_rate_and_multiplier(
+                params,
+                &state,
+                point.tangential.apply_n::<N>(v) - main_body.along(point, base),
+            );
+            dtraction[i] = rate;
+            dstructure[i] = law::structure_rate(params, structure[i], multiplier);
+            dslip[i] = multiplier;
+            lambda[i] = multiplier;
         }
     }
 }

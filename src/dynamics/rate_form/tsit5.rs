@@ -85,6 +85,21 @@ pub fn bounded_growth(omega_span: f64, growth: f64) -> f64 {
     lo
 }
 
+/// `sum = Σ_s weights_s stages_s`, component by component, added in the order of the stages
+/// from `+0`.
+#[inline(always)]
+fn weighted_sum(weights: &[f64], stages: &[Vec<f64>], sum: &mut [f64]) {
+    let first = &stages[0][..sum.len()];
+    for (x, k) in sum.iter_mut().zip(first) {
+        *x = 0.0 + weights[0] * k;
+    }
+    for (w, stage) in weights.iter().zip(stages).skip(1) {
+        for (x, k) in sum.iter_mut().zip(&stage[..]) {
+            *x += w * k;
+        }
+    }
+}
+
 /// The pair's error is per step and falls as `h⁵`: the next step is `0.9 h (tolerance/error)^{1/5}`,
 /// at most 5 times the last.
 pub(crate) const FIFTH_ORDER: ErrorScaling = ErrorScaling { per_unit_step: false, root: fifth_root, max_growth: 5.0 };
@@ -98,12 +113,15 @@ fn fifth_root(x: f64) -> f64 {
 pub struct Tsit5 {
     stages: [Vec<f64>; 7],
     work: Vec<f64>,
+    /// The weighted sum of the stages, per component (a buffer, not state).
+    #[serde(skip)]
+    sum: Vec<f64>,
 }
 
 impl Tsit5 {
     /// Workspace for systems of `len` unknowns.
     pub fn new(len: usize) -> Self {
-        Self { stages: std::array::from_fn(|_| vec![0.0; len]), work: vec![0.0; len] }
+        Self { stages: std::array::from_fn(|_| vec![0.0; len]), work: vec![0.0; len], sum: vec![0.0; len] }
     }
 
     /// Whether the workspace is for `len` unknowns.
@@ -115,6 +133,9 @@ impl Tsit5 {
     /// `ẏ`. Returns the error estimate `max_j |(y₅ - y₄)_j| / (scale_j + max(|y_j|, |y₅_j|))`
     /// (infinite if anything is not finite); the fifth-order solution `y₅` and its rate are
     /// then [`Self::solution`] and [`Self::solution_rate`] (FSAL: the last stage is there).
+    ///
+    /// Each weighted sum `Σ_s a_s k_s` is accumulated stage after stage over all components at
+    /// once (loops the compiler vectorizes), in the order of the stages.
     pub fn step(
         &mut self,
         y: &[f64],
@@ -125,21 +146,21 @@ impl Tsit5 {
         mut f: impl FnMut(f64, &[f64], &mut [f64]),
     ) -> f64 {
         let len = y.len();
+        self.sum.resize(len, 0.0);
         self.stages[0].copy_from_slice(rate);
         for (i, row) in A.iter().enumerate() {
-            for j in 0..len {
-                let mut sum = 0.0;
-                for (a, k) in row.iter().zip(&self.stages).take(i + 1) {
-                    sum += a * k[j];
-                }
-                self.work[j] = y[j] + h * sum;
+            let (known, next) = self.stages.split_at_mut(i + 1);
+            weighted_sum(&row[..=i], known, &mut self.sum);
+            for ((w, y), sum) in self.work.iter_mut().zip(y).zip(&self.sum) {
+                *w = y + h * sum;
             }
             // The last row is b: the last stage is evaluated at y₅ itself.
-            f(t + C[i] * h, &self.work, &mut self.stages[i + 1]);
+            f(t + C[i] * h, &self.work, &mut next[0]);
         }
+        weighted_sum(&ERROR, &self.stages, &mut self.sum);
         let mut error: f64 = 0.0;
         for j in 0..len {
-            let e: f64 = ERROR.iter().zip(&self.stages).map(|(w, k)| w * k[j]).sum::<f64>() * h;
+            let e = self.sum[j] * h;
             let size = scale[j] + y[j].abs().max(self.work[j].abs());
             error = error.max((e / size).abs());
         }
