@@ -90,11 +90,28 @@ impl LoopOptions<'_> {
     }
 }
 
-/// The sinks and the event detector that observe a run, and the last frame they were given.
+/// What the frames of a run hold: every frame what the event detector and the caller need
+/// (`every`), and a frame that some sink writes ([`Sink::writes`]) also what the sinks need
+/// (`written`: the surface nodes, the drawn mesh). Most steps of a run in stick are not
+/// written, so their frames skip the parts only written rows read.
+#[derive(Debug, Clone, Copy)]
+struct FrameNeeds {
+    every: Needs,
+    written: Needs,
+}
+
+/// The sinks and the event detector that observe a run, and the last frames they were given.
 struct Observers<'s, 'b> {
     sinks: &'s mut [Box<dyn Sink + 'b>],
     detector: EventDetector,
+    needs: FrameNeeds,
+    /// Which sinks need more than `needs.every` ([`Sink::needs`]): only they are asked
+    /// whether they write a frame.
+    needy: Vec<bool>,
+    /// The last frame built with `needs.written`.
     last: Option<Frame>,
+    /// A later step's frame, built with `needs.every` only because no sink wrote it.
+    unwritten: Option<Frame>,
 }
 
 impl Observers<'_, '_> {
@@ -113,6 +130,25 @@ impl Observers<'_, '_> {
         (checkpoints.save)(&memory, label).map_err(SinkError)
     }
 
+    /// Hands the frame of `scene`'s current state, after a step of `dt`, to the detector and
+    /// every sink: with the parts only written rows read if some sink writes it.
+    fn record_step(&mut self, scene: &dyn Scene, dt: f64) -> Result<(), SinkError> {
+        let FrameNeeds { every, written } = self.needs;
+        let frame = scene.frame(every, dt);
+        let needy = self.sinks.iter().zip(&self.needy).filter(|(_, needy)| **needy);
+        if every == written || needy.into_iter().any(|(sink, _)| sink.writes(&frame)) {
+            let frame = if every == written { frame } else { scene.frame(written, dt) };
+            self.unwritten = None;
+            self.record(frame)
+        } else {
+            self.detector.record(&frame);
+            let result = self.sinks.iter_mut().try_for_each(|sink| sink.record(&frame));
+            self.unwritten = Some(frame);
+            result
+        }
+    }
+
+    /// Hands `frame`, built with `needs.written`, to the detector and every sink.
     fn record(&mut self, frame: Frame) -> Result<(), SinkError> {
         self.detector.record(&frame);
         let result = self.sinks.iter_mut().try_for_each(|sink| sink.record(&frame));
@@ -120,8 +156,17 @@ impl Observers<'_, '_> {
         result
     }
 
-    /// Closes the catalog and finishes every sink (all of them, even after one fails).
-    fn finish(self, ending: Ending) -> Result<Catalog, SinkError> {
+    /// Closes the catalog and finishes every sink (all of them, even after one fails) with the
+    /// last good step's frame: built again in full from `scene` if no sink wrote it, where the
+    /// scene still holds that step (a step that failed may have moved it: a Wilson step split
+    /// in halves whose second half failed), else the last frame a sink wrote.
+    fn finish(mut self, ending: Ending, scene: &dyn Scene) -> Result<Catalog, SinkError> {
+        if let Some(light) = self.unwritten.take() {
+            let full = scene.frame(self.needs.written, light.dt);
+            if full.step == light.step && full.time.to_bits() == light.time.to_bits() {
+                self.last = Some(full);
+            }
+        }
         let catalog = self.detector.into_catalog();
         let mut first_error = Ok(());
         for sink in self.sinks.iter_mut() {
@@ -154,7 +199,7 @@ pub fn run(
 ) -> Outcome {
     let resume = options.resume.take();
     let mut k: u64 = resume.as_ref().map_or(0, |r| r.steps);
-    let (mut observers, needs) = match begin(scene, sinks, &options, resume) {
+    let mut observers = match begin(scene, sinks, &options, resume) {
         Ok(begun) => begun,
         Err(e) => return Outcome::Sink(e),
     };
@@ -171,7 +216,7 @@ pub fn run(
     while time.t_end - scene.time() > slack {
         if options.interrupt.is_some_and(|flag| flag.load(Ordering::SeqCst)) {
             progress.clear();
-            return match observers.finish(Ending::Interrupted) {
+            return match observers.finish(Ending::Interrupted, scene) {
                 Ok(catalog) => Outcome::Interrupted { steps: k, catalog },
                 Err(e) => Outcome::Sink(e),
             };
@@ -183,16 +228,16 @@ pub fn run(
             && (step.is_err() || scene.time() > time.t_end + slack)
         {
             // Past t_end: the run's shared past ends before this step.
-            let closer = Closer { time, needs, slack, last_dt };
+            let closer = Closer { time, slack, last_dt };
             match closer.close_from(before, scene, &mut observers, &mut k, checkpoints.as_mut(), &mut progress) {
                 Ok(()) => {
                     closed = true;
                     break;
                 }
-                Err(Closing::Run(error)) => return failed(&mut progress, observers, error),
+                Err(Closing::Run(error)) => return failed(&mut progress, observers, scene, error),
                 Err(Closing::Sink(e)) => {
                     progress.clear();
-                    let _ = observers.finish(Ending::Failed);
+                    let _ = observers.finish(Ending::Failed, scene);
                     return Outcome::Sink(e);
                 }
             }
@@ -200,10 +245,10 @@ pub fn run(
         k += 1;
         let dt = match step {
             Ok(dt) => dt,
-            Err(error) => return failed(&mut progress, observers, error),
+            Err(error) => return failed(&mut progress, observers, scene, error),
         };
         last_dt = dt;
-        let mut recorded = observers.record(scene.frame(needs, dt));
+        let mut recorded = observers.record_step(scene, dt);
         if let Some(c) = checkpoints.as_mut().filter(|c| scene.time() >= next_checkpoint - 1e-9 * c.every) {
             let label = next_checkpoint;
             recorded = recorded.and_then(|()| observers.checkpoint(scene, k, dt, c, label));
@@ -211,7 +256,7 @@ pub fn run(
         }
         if let Err(e) = recorded {
             progress.clear();
-            let _ = observers.finish(Ending::Failed);
+            let _ = observers.finish(Ending::Failed, scene);
             return Outcome::Sink(e);
         }
         progress.show(k, scene.time());
@@ -223,11 +268,11 @@ pub fn run(
         checkpoints.as_mut().filter(|c| !closed && next_checkpoint - c.every < scene.time() - 1e-9 * c.every)
         && let Err(e) = observers.checkpoint(scene, k, last_dt, c, time.t_end)
     {
-        let _ = observers.finish(Ending::Failed);
+        let _ = observers.finish(Ending::Failed, scene);
         return Outcome::Sink(e);
     }
     let statistics = scene.statistics();
-    match observers.finish(Ending::Completed) {
+    match observers.finish(Ending::Completed, scene) {
         Ok(catalog) => Outcome::Completed {
             steps: k,
             rejected: statistics.rejected,
@@ -249,7 +294,6 @@ enum Closing {
 /// How a run that stepped past `t_end` ends ([`run`]).
 struct Closer<'t> {
     time: &'t TimeSpec,
-    needs: Needs,
     /// Times within this of `t_end` are `t_end`.
     slack: f64,
     /// The last shared step's length.
@@ -283,7 +327,7 @@ impl Closer<'_> {
         while self.time.t_end - scene.time() > self.slack {
             *k += 1;
             let dt = scene.advance(self.time.t_end - scene.time()).map_err(Closing::Run)?;
-            observers.record(scene.frame(self.needs, dt)).map_err(Closing::Sink)?;
+            observers.record_step(scene, dt).map_err(Closing::Sink)?;
             progress.show(*k, scene.time());
         }
         Ok(())
@@ -291,9 +335,9 @@ impl Closer<'_> {
 }
 
 /// Finishes the sinks of a run whose step failed.
-fn failed(progress: &mut Progress, observers: Observers<'_, '_>, error: RunError) -> Outcome {
+fn failed(progress: &mut Progress, observers: Observers<'_, '_>, scene: &dyn Scene, error: RunError) -> Outcome {
     progress.clear();
-    match observers.finish(Ending::Failed) {
+    match observers.finish(Ending::Failed, scene) {
         Ok(catalog) => Outcome::Failed { error, catalog },
         Err(e) => Outcome::Sink(e),
     }
@@ -306,14 +350,13 @@ fn after(time: f64, every: f64) -> f64 {
 
 /// Begins every sink (all of them even if one fails, so that the others are finished as
 /// valid, empty files of a failed run) and records the initial frame, or, resuming, hands
-/// every sink its memory and the detector its own. Returns the observers and what every frame
-/// must hold.
+/// every sink its memory and the detector its own. Returns the observers.
 fn begin<'s, 'b>(
     scene: &dyn Scene,
     sinks: &'s mut [Box<dyn Sink + 'b>],
     options: &LoopOptions<'_>,
     resume: Option<RunMemory>,
-) -> Result<(Observers<'s, 'b>, Needs), SinkError> {
+) -> Result<Observers<'s, 'b>, SinkError> {
     let layout: Layout = scene.layout().clone();
     let mut begun = Ok(());
     for sink in sinks.iter_mut() {
@@ -324,32 +367,36 @@ fn begin<'s, 'b>(
     }
     // Asked after `begin`: a sink learns from the layout what it will read (an MCAP log's
     // node selection, say).
-    let needs = sinks.iter().fold(options.needs, |n, s| n.union(s.needs()));
+    let written = sinks.iter().fold(options.needs, |n, s| n.union(s.needs()));
+    // The segments' full state stays in every frame: the detector reads `1/R*` at onsets.
+    let every = Needs { segment_state: written.segment_state, ..options.needs };
     let detector = EventDetector::new(layout.segments.len(), options.slip_rate_threshold, options.merge_within)
         .with_instantaneous_rates(layout.instantaneous_slip_rate)
         .with_contacts(layout.contacts.iter().map(|c| c.segments).collect());
-    let mut observers = Observers { sinks, detector, last: None };
+    let needs = FrameNeeds { every, written };
+    let needy = sinks.iter().map(|s| s.needs().union(every) != every).collect();
+    let mut observers = Observers { sinks, detector, needs, needy, last: None, unwritten: None };
     if let Err(e) = begun {
         // The initial state is the last good step: the sinks that began keep it.
-        observers.last = Some(scene.frame(needs, 0.0));
-        let _ = observers.finish(Ending::Failed);
+        observers.last = Some(scene.frame(written, 0.0));
+        let _ = observers.finish(Ending::Failed, scene);
         return Err(e);
     }
     if let Some(memory) = resume {
         let resumed = observers.sinks.iter_mut().try_for_each(|sink| sink.resume(&memory.sinks));
         observers.detector = memory.detector;
-        observers.last = Some(scene.frame(needs, memory.last_dt));
+        observers.last = Some(scene.frame(written, memory.last_dt));
         if let Err(e) = resumed {
-            let _ = observers.finish(Ending::Failed);
+            let _ = observers.finish(Ending::Failed, scene);
             return Err(e);
         }
-        return Ok((observers, needs));
+        return Ok(observers);
     }
-    if let Err(e) = observers.record(scene.frame(needs, 0.0)) {
-        let _ = observers.finish(Ending::Failed);
+    if let Err(e) = observers.record(scene.frame(written, 0.0)) {
+        let _ = observers.finish(Ending::Failed, scene);
         return Err(e);
     }
-    Ok((observers, needs))
+    Ok(observers)
 }
 
 /// The most step `k` may take: with fixed steps, to `k dt` exactly (no drift); with adaptive

@@ -77,10 +77,10 @@ fn the_paper_block_from_gmsh_in_every_form_gives_the_blocks_catalogs_byte_for_by
 /// identical to the bit. With Wilson's fixed steps that rounding is all that differs: the first
 /// four onsets agree within 1e-9 relative (measured 1.3e-10). An adaptive method's steps follow its error estimate, which
 /// rounding moves, so its onsets agree to its own accuracy instead: the default within 5e-6
-/// relative (measured 1.5e-6; its documented accuracy is 2e-3 s at 420 s), and at a tolerance
-/// of 1e-10 within 2e-8 (measured 7.8e-9). With every method the segments' tractions in the
+/// relative (measured 5.4e-9; its documented accuracy is 2e-3 s at 420 s), and at a tolerance
+/// of 1e-10 within 2e-8 (measured 4.9e-9). With every method the segments' tractions in the
 /// local frame agree every 50 s up to 400 s, before the first slips, within a billionth of the
-/// weakest static strength (measured 2.4e-9 Pa with Wilson, 1.8e-8 Pa with Tsit5, of 140 Pa).
+/// weakest static strength (measured 2.4e-9 Pa with Wilson, 1.5e-8 Pa with Tsit5, of 140 Pa).
 #[test]
 fn the_block_rotated_gives_the_same_onsets_and_local_tractions() {
     let along_arc = "scene.contacts.0.normal_traction={kind=\"linear\", along=\"arc\", at=[0, 10], value=[350, 1200]}";

@@ -271,6 +271,50 @@ pub fn tangential_rate_and_multiplier(params: &FrictionParams, state: &ContactSt
     }
 }
 
+/// Whether a point loads by eq. (9) (`Λ > 0` in eq. 5) at `v̄ = (v̄_t, 0)`: the branch of
+/// eq. (6) it follows from this state ([`tangential_rate_on_branch`]).
+pub fn loads(params: &FrictionParams, state: &ContactState, v_t: f64) -> bool {
+    loading(params, state, v_t).is_ok()
+}
+
+/// `ḟ_t` of eq. (6) and `Λ` of eq. (5) on one branch of eq. (6) for `v̄ = (v̄_t, 0)`, continued
+/// past eq. (9)'s switch: on the loading branch `Λ = N/D` unclipped (negative where eq. 9
+/// would unload), on the unloading branch `Λ = 0`. Each branch is smooth in the state, so an
+/// integrator that holds a point on one branch over a step and ends the step where the
+/// branch's switching function changes sign meets no kink inside a step. Returns
+/// `(ḟ_t, Λ, N)`, `N` the numerator of eq. (5), whose sign is eq. (9)'s switch (the
+/// denominator `D` is positive: `R ≤ 1` and `α_t > γ κ R (1/R* - 1)^m μ_k f_n` for the
+/// paper's constants); `N` is NaN where eq. (9) does not apply (no normal traction, or
+/// `f_t = 0`, where the point is elastic).
+#[inline(always)]
+pub fn tangential_rate_on_branch(
+    params: &FrictionParams,
+    state: &ContactState,
+    v_t: f64,
+    loading: bool,
+) -> (f64, f64, f64) {
+    if state.traction_n <= 0.0 {
+        return (0.0, 0.0, f64::NAN);
+    }
+    let elastic = -params.alpha_t * v_t;
+    if state.traction_t == 0.0 {
+        return (elastic, 0.0, f64::NAN);
+    }
+    let sigma = state.direction();
+    let z = state.structure;
+    let mu_f = params.mu_k * state.traction_n;
+    let gamma = params.rstar_scale();
+    let ratio = state.sliding_ratio(params);
+    let numer = -params.alpha_t * sigma * v_t - gamma * params.xi * ratio * healing(params, z) * mu_f;
+    if !loading {
+        return (elastic, 0.0, numer);
+    }
+    let softening = gamma * params.kappa * ratio * decay(params, z) * mu_f;
+    let denom = params.alpha_t - params.r * ratio.ln() * z * mu_f - softening;
+    let lambda = numer / denom;
+    (elastic - params.alpha_t * sigma * lambda, lambda, numer)
+}
+
 /// [`traction_rate`] for `v̄ = (v̄_t, 0)`, tangential component, with partial derivatives.
 pub fn tangential_rate(params: &FrictionParams, state: &ContactState, v_t: f64) -> TangentialRate {
     let l = match loading(params, state, v_t) {

@@ -24,9 +24,12 @@ impl Default for SeriesDigest {
 impl SeriesDigest {
     /// Adds one row.
     pub fn add(&mut self, step: i64, seconds: f64, value: f64) {
-        self.0.update(&step.to_le_bytes());
-        self.0.update(&nanos(seconds).to_le_bytes());
-        self.0.update(&value.to_bits().to_le_bytes());
+        // One update of the row's 24 bytes hashes what three of 8 would, at a third of the calls.
+        let mut row = [0u8; 24];
+        row[..8].copy_from_slice(&step.to_le_bytes());
+        row[8..16].copy_from_slice(&nanos(seconds).to_le_bytes());
+        row[16..].copy_from_slice(&value.to_bits().to_le_bytes());
+        self.0.update(&row);
     }
 
     /// The digest of the rows added so far, as 8 hexadecimal digits.

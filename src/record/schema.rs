@@ -490,18 +490,24 @@ impl Decimator {
     /// 0, not from the last recorded: so the frame at `t_end` shifts none of them, and a run
     /// extended past its end records the rows a longer run records.
     pub fn keep(&mut self, frame: &Frame) -> bool {
-        let keep = match self.last {
+        let keep = self.would_keep(frame);
+        if keep {
+            self.last = Some(frame.step);
+        }
+        keep
+    }
+
+    /// Whether [`Self::keep`] would record `frame`, remembering nothing. It reads the frame's
+    /// step, time and slip rates only.
+    pub fn would_keep(&self, frame: &Frame) -> bool {
+        match self.last {
             None => true,
             Some(last) => {
                 frame.segments.iter().any(|s| s.slip_rate > self.threshold)
                     || frame.step / self.stick_every > last / self.stick_every
                     || frame.time >= self.t_end * (1.0 - 1e-12)
             }
-        };
-        if keep {
-            self.last = Some(frame.step);
         }
-        keep
     }
 
     /// Whether the run's last frame still has to be recorded (and, if so, remembers it).

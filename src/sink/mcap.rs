@@ -240,6 +240,10 @@ impl Sink for McapSink {
         if self.decimator.keep(frame) { self.write_row(frame) } else { Ok(()) }
     }
 
+    fn writes(&self, frame: &Frame) -> bool {
+        self.decimator.would_keep(frame)
+    }
+
     fn checkpoint(&mut self) -> Result<SinkMemory, SinkError> {
         let Some(writer) = self.writer.as_mut() else {
             return Err(SinkError(format!("{} was abandoned after an earlier write error", self.path.display())));

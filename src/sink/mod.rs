@@ -48,6 +48,13 @@ pub trait Sink {
     fn begin(&mut self, layout: &Layout) -> Result<(), SinkError>;
     /// Called for the initial frame and after every step.
     fn record(&mut self, frame: &Frame) -> Result<(), SinkError>;
+    /// Whether [`Sink::record`] writes `frame`, asked of a frame that holds what every frame
+    /// holds (step, time, the segments) but not yet the parts of [`Sink::needs`]: the run loop
+    /// computes those only for frames some sink writes. A decimating sink answers from its
+    /// decimator, without remembering anything; `true` by default.
+    fn writes(&self, _frame: &Frame) -> bool {
+        true
+    }
     /// Hands everything buffered to the disk and returns what the sink must remember to
     /// continue after a checkpoint taken now ([`SinkMemory`]).
     fn checkpoint(&mut self) -> Result<SinkMemory, SinkError> {

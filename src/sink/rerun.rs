@@ -306,6 +306,10 @@ impl Sink for RerunSink {
         if self.decimator.keep(frame) { self.write_row(frame, false) } else { Ok(()) }
     }
 
+    fn writes(&self, frame: &Frame) -> bool {
+        self.decimator.would_keep(frame)
+    }
+
     fn checkpoint(&mut self) -> Result<SinkMemory, SinkError> {
         self.flush_columns()?;
         flush(self.rec())?;

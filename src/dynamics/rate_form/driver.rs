@@ -40,7 +40,20 @@ pub(super) struct Trial {
     y: Vec<f64>,
     rate: Vec<f64>,
     lambda: Vec<f64>,
+    /// Eq. (9)'s switching function per point at `y`, where the points are held on branches.
+    numerator: Vec<f64>,
     error: f64,
+}
+
+/// Where an accepted trial of Tsitouras' pair carries a point across eq. (9)'s switch
+/// ([`RungeKutta::first_switch`]).
+enum Switch {
+    /// The point's branch already disagrees with eq. (9) where the step starts (a switch
+    /// located a little early, then undone by the flow, or a state the projection moved): it
+    /// is switched there, and the step taken again.
+    Now(usize),
+    /// The first switch, at the fraction `theta` of the step, of the point given.
+    At(f64, usize),
 }
 
 /// A Runge–Kutta method on the rate form, with its step-size control and its memory.
@@ -123,25 +136,58 @@ fn attempts(
     let tolerance = control.tolerance;
     let mut rejected = false;
     let mut trial = rk.spare();
+    // Points switched where the step starts, each at most once per step (no ping-pong).
+    let mut switched_now: Vec<usize> = Vec::new();
     loop {
-        let h = control.next.min(limit);
+        let mut h = control.next.min(limit);
         // A failed implicit solve counts as an infinite error: the step shrinks.
         let failure = rk.trial(system, t, h, tolerance, &mut trial).err();
-        let error = if failure.is_none() { trial.error } else { f64::INFINITY };
+        let mut error = if failure.is_none() { trial.error } else { f64::INFINITY };
+        let mut switching = None;
+        if error <= tolerance {
+            // Eq. (9)'s first switch inside the step ends it: the trial past it is discarded.
+            match rk.first_switch(system, t, h, &trial) {
+                Some(Switch::Now(point)) if !switched_now.contains(&point) => {
+                    statistics.rejected += 1;
+                    switched_now.push(point);
+                    rk.switch_branch(system, t, point);
+                    continue;
+                }
+                Some(Switch::At(theta, point)) if theta * h > 0.0 && t + theta * h > t => {
+                    statistics.rejected += 1;
+                    control.next = control.resize(h, error, scaling);
+                    h *= theta;
+                    error = match rk.trial(system, t, h, tolerance, &mut trial) {
+                        Ok(()) => trial.error,
+                        Err(_) => f64::INFINITY,
+                    };
+                    switching = Some((point, control.next));
+                }
+                _ => {}
+            }
+        }
         if error <= tolerance {
             statistics.accepted += 1;
-            control.next = control.resize(h, error, scaling);
+            control.next = match switching {
+                // The step was cut at the switch, not by its error: the next one is the step
+                // the error allowed.
+                Some((_, next)) => next,
+                None => control.resize(h, error, scaling),
+            };
             if rejected {
                 control.next = control.next.min(h);
             }
-            let (h, trial) = match rk.crossing(system, t, h, &trial, threshold, tolerance) {
+            let (located, trial) = match rk.crossing(system, t, h, &trial, threshold, tolerance) {
                 Some((located, past)) => {
                     rk.give_back(trial);
-                    (located, past)
+                    (Some(located), past)
                 }
-                None => (h, trial),
+                None => (None, trial),
             };
-            accept(system, rk, t + h, trial);
+            // The switch is reached unless a threshold crossing ended the step before it.
+            let switch = switching.filter(|_| located.is_none()).map(|(point, _)| point);
+            let h = located.unwrap_or(h);
+            accept(system, rk, t + h, trial, switch);
             return Ok(h);
         }
         statistics.rejected += 1;
@@ -157,10 +203,14 @@ fn attempts(
     }
 }
 
-/// Makes `trial`, reached at `time`, the state; the vectors it replaces become a spare.
-fn accept(system: &mut System, rk: &mut RungeKutta, time: f64, mut trial: Trial) {
-    if system.project(&mut trial.y) {
-        system.rate_form(time, &trial.y, &mut trial.rate, &mut trial.lambda);
+/// Makes `trial`, reached at `time`, the state; the vectors it replaces become a spare. With
+/// `switch`, that point's branch of eq. (6) changes there (the trial ended on its switch).
+fn accept(system: &mut System, rk: &mut RungeKutta, time: f64, mut trial: Trial, switch: Option<usize>) {
+    if let Some(point) = switch {
+        rk.branches[point] = !rk.branches[point];
+    }
+    if system.project(&mut trial.y) || switch.is_some() {
+        rk.evaluate(system, time, &trial.y, &mut trial.rate, &mut trial.lambda, &mut trial.numerator);
     }
     let n = system.body.dofs();
     let m = system.contact.points.len();
@@ -182,6 +232,7 @@ fn accept(system: &mut System, rk: &mut RungeKutta, time: f64, mut trial: Trial)
     std::mem::swap(&mut rk.y, &mut trial.y);
     std::mem::swap(&mut rk.rate, &mut trial.rate);
     std::mem::swap(&mut rk.lambda, &mut trial.lambda);
+    std::mem::swap(&mut rk.numerator, &mut trial.numerator);
     rk.give_back(trial);
 }
 
@@ -221,13 +272,125 @@ impl RungeKutta {
         scale.extend(std::iter::repeat_n(length, m));
         let mut rate = vec![0.0; y.len()];
         let mut lambda = vec![0.0; m];
-        dynamics.rate_form(s.time, &y, &mut rate, &mut lambda);
         let len = y.len();
-        let pair = match tableau {
-            Tableau::Tsit5 => Pair::Tsit5(Tsit5::new(len)),
-            Tableau::Sdirk4 => Pair::Sdirk4(Box::new(Sdirk4::new(len, m))),
+        let (pair, mut branches) = match tableau {
+            Tableau::Tsit5 => (Pair::Tsit5(Tsit5::new(len)), Vec::with_capacity(m)),
+            Tableau::Sdirk4 => (Pair::Sdirk4(Box::new(Sdirk4::new(len, m))), Vec::new()),
         };
-        Self { at: (s.step, s.time), y, rate, lambda, scale, pair, spares: Vec::new() }
+        if tableau == Tableau::Tsit5 {
+            dynamics.branches(s.time, &y, &mut branches);
+        }
+        let mut numerator = vec![f64::NAN; branches.len()];
+        let mut rk = Self {
+            at: (s.step, s.time),
+            y,
+            rate: Vec::new(),
+            lambda: Vec::new(),
+            branches,
+            numerator: Vec::new(),
+            scale,
+            pair,
+            spares: Vec::new(),
+        };
+        rk.evaluate(dynamics, s.time, &rk.y.clone(), &mut rate, &mut lambda, &mut numerator);
+        (rk.rate, rk.lambda, rk.numerator) = (rate, lambda, numerator);
+        rk
+    }
+
+    /// The right-hand side at `y` and `t`: with each point held on its branch of eq. (6)
+    /// where [`Self::branches`] are kept, else switched by eq. (9).
+    fn evaluate(
+        &self,
+        dynamics: &System,
+        t: f64,
+        y: &[f64],
+        rate: &mut [f64],
+        lambda: &mut [f64],
+        numerator: &mut Vec<f64>,
+    ) {
+        if self.branches.is_empty() {
+            dynamics.rate_form(t, y, rate, lambda);
+        } else {
+            numerator.resize(self.branches.len(), f64::NAN);
+            dynamics.rate_form_on_branches(t, y, rate, lambda, &self.branches, numerator);
+        }
+    }
+
+    /// Switches `point` to the other branch of eq. (6) at the current state (time `t`), and
+    /// evaluates the rate there again: the next step's first stage.
+    fn switch_branch(&mut self, dynamics: &System, t: f64, point: usize) {
+        self.branches[point] = !self.branches[point];
+        let (mut rate, mut lambda, mut numerator) =
+            (std::mem::take(&mut self.rate), std::mem::take(&mut self.lambda), std::mem::take(&mut self.numerator));
+        self.evaluate(dynamics, t, &self.y, &mut rate, &mut lambda, &mut numerator);
+        (self.rate, self.lambda, self.numerator) = (rate, lambda, numerator);
+    }
+
+    /// The first point whose switching function (eq. 9) an accepted `trial` of `h` from `t`
+    /// carries to the side of the other branch: where, by Illinois' regula falsi on the
+    /// switching function along the cubic Hermite interpolant of the step (from the states
+    /// and rates at its ends), and the fraction of the step just past it. `None` with no held
+    /// branches (SDIRK4) or no switch.
+    fn first_switch(&self, dynamics: &System, t: f64, h: f64, trial: &Trial) -> Option<Switch> {
+        let against = |loading: bool, g: f64| if loading { g < 0.0 } else { g > 0.0 };
+        let mut first: Option<(f64, usize)> = None;
+        for (i, &loading) in self.branches.iter().enumerate() {
+            let (g0, g1) = (self.numerator[i], trial.numerator[i]);
+            if !against(loading, g1) {
+                continue;
+            }
+            if !g0.is_finite() || g0 == 0.0 || against(loading, g0) {
+                return Some(Switch::Now(i));
+            }
+            let theta = self.locate_switch(dynamics, t, h, trial, i, (g0, g1));
+            if first.is_none_or(|(earliest, _)| theta < earliest) {
+                first = Some((theta, i));
+            }
+        }
+        first.map(|(theta, i)| Switch::At(theta, i))
+    }
+
+    /// The fraction of the step of `h` from `t` to `trial` just past point `i`'s switch, its
+    /// switching function being `ends` at the two ends.
+    fn locate_switch(&self, dynamics: &System, t: f64, h: f64, trial: &Trial, i: usize, ends: (f64, f64)) -> f64 {
+        let n = dynamics.body.dofs();
+        let m = self.branches.len();
+        let (y0, f0, y1, f1) = (&self.y, &self.rate, &trial.y, &trial.rate);
+        let g = |theta: f64| {
+            let (s, s2, s3) = (theta, theta * theta, theta * theta * theta);
+            let (a, b, c, d) = (2.0 * s3 - 3.0 * s2 + 1.0, s3 - 2.0 * s2 + s, 3.0 * s2 - 2.0 * s3, s3 - s2);
+            let at = |j: usize| a * y0[j] + b * h * f0[j] + c * y1[j] + d * h * f1[j];
+            dynamics.switching_at(i, t + theta * h, |dof| at(n + dof), at(2 * n + i), at(2 * n + m + i))
+        };
+        let ((mut lo, mut g_lo), (mut hi, mut g_hi)) = ((0.0, ends.0), (1.0, ends.1));
+        let mut kept = 0_i32;
+        for _ in 0..MAX_LOCATING_STEPS {
+            if hi - lo <= 1e-12 {
+                break;
+            }
+            let mut s = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+            if !(s > lo && s < hi) {
+                s = 0.5 * (lo + hi);
+            }
+            let value = g(s);
+            if !value.is_finite() {
+                break;
+            }
+            if (value > 0.0) == (g_lo > 0.0) && value != 0.0 {
+                (lo, g_lo) = (s, value);
+                if kept == -1 {
+                    g_hi *= 0.5;
+                }
+                kept = -1;
+            } else {
+                (hi, g_hi) = (s, value);
+                if kept == 1 {
+                    g_lo *= 0.5;
+                }
+                kept = 1;
+            }
+        }
+        hi
     }
 
     /// A trial's buffers: one handed back earlier, or new ones.
@@ -246,9 +409,10 @@ impl RungeKutta {
         let len = 2 * dynamics.body.dofs() + 3 * m;
         let sized =
             [self.y.len(), self.rate.len(), self.scale.len()].iter().all(|&l| l == len) && self.lambda.len() == m;
+        let held = |count: usize| self.branches.len() == count && self.numerator.len() == count;
         let pair = match (&self.pair, tableau) {
-            (Pair::Tsit5(pair), Tableau::Tsit5) => pair.fits(len),
-            (Pair::Sdirk4(pair), Tableau::Sdirk4) => pair.fits(len, m),
+            (Pair::Tsit5(pair), Tableau::Tsit5) => pair.fits(len) && held(m),
+            (Pair::Sdirk4(pair), Tableau::Sdirk4) => pair.fits(len, m) && held(0),
             _ => return Err(mismatch("saved by the other Runge–Kutta method")),
         };
         if sized && pair {
@@ -269,11 +433,13 @@ impl RungeKutta {
         out: &mut Trial,
     ) -> Result<(), StepError> {
         out.lambda.resize(self.lambda.len(), 0.0);
+        out.numerator.resize(self.branches.len(), f64::NAN);
         let (error, y, rate) = match &mut self.pair {
             Pair::Tsit5(pair) => {
-                let lambda = &mut out.lambda;
-                let error = pair
-                    .step(&self.y, &self.rate, t, h, &self.scale, |t, y, rate| dynamics.rate_form(t, y, rate, lambda));
+                let (lambda, numerator, branches) = (&mut out.lambda, &mut out.numerator, &self.branches);
+                let error = pair.step(&self.y, &self.rate, t, h, &self.scale, |t, y, rate| {
+                    dynamics.rate_form_on_branches(t, y, rate, lambda, branches, numerator)
+                });
                 (error, pair.solution(), pair.solution_rate())
             }
             Pair::Sdirk4(pair) => {

@@ -14,6 +14,12 @@ pub struct RungeKutta {
     pub(super) y: Vec<f64>,
     pub(super) rate: Vec<f64>,
     pub(super) lambda: Vec<f64>,
+    /// The branch of eq. (6) each point is held on over the next step (`true`: loading), for
+    /// Tsitouras' pair; empty for SDIRK4, which switches by eq. (9) at every evaluation.
+    pub(super) branches: Vec<bool>,
+    /// Eq. (9)'s switching function at `y` per point (NaN where it does not apply), with
+    /// `branches`.
+    pub(super) numerator: Vec<f64>,
     /// Physical scale of each component, added to its size in the error measure.
     pub(super) scale: Vec<f64>,
     pub(super) pair: Pair,

@@ -33,10 +33,25 @@
 //! them only to its local error, so each accepted state is put back on that set where it has
 //! left it, and its rate evaluated again ([`System::project`]).
 //!
+//! Eq. (9)'s switches between loading and unloading are kinks of the right-hand side (its
+//! value continuous, its slope not), and a step across one is rejected by its error estimate.
+//! Tsitouras' pair therefore holds each point on its branch of eq. (6) over a step
+//! ([`System::rate_form_on_branches`], each branch smooth) and ends the step where a point's
+//! switching function (the numerator `N` of eq. 5) changes sign, located along the step's cubic
+//! Hermite interpolant ([`driver`]); the point changes branch there.
+//!
 //! Stick/slip transitions are located, not stepped over: when a step carries a contact point's
 //! plastic slip rate `Λ` across the event threshold, the step is shortened to end just past the
 //! crossing (found by the Illinois variant of regula falsi on `Λ - threshold` with fifth-order
 //! steps from the step's start), so that a frame lies on every onset and every end.
+
+/// How the right-hand side chooses each point's branch of eq. (6).
+enum Switching<'a> {
+    /// By eq. (9) at the point's state, at every evaluation.
+    ByEq9,
+    /// As given, continued past the switch; eq. (9)'s switching function into `numerator`.
+    Held { branches: &'a [bool], numerator: &'a mut [f64] },
+}
 
 pub mod driver;
 pub mod memory;
@@ -79,6 +94,73 @@ impl System {
 
     /// The right-hand side `ẏ = f(t, y)` (module docs); fills `lambda` with each point's `Λ`.
     pub(crate) fn rate_form(&self, t: f64, y: &[f64], rate: &mut [f64], lambda: &mut [f64]) {
+        self.rate_form_switched(t, y, rate, lambda, &mut Switching::ByEq9);
+    }
+
+    /// The right-hand side with each point held on the branch of eq. (6) `branches` names
+    /// (`true`: loading), continued past eq. (9)'s switch
+    /// ([`law::tangential_rate_on_branch`]): smooth in `y`. Fills `lambda` with each point's
+    /// `Λ` and `numerator` with eq. (9)'s switching function `N` (NaN where it does not apply).
+    pub(crate) fn rate_form_on_branches(
+        &self,
+        t: f64,
+        y: &[f64],
+        rate: &mut [f64],
+        lambda: &mut [f64],
+        branches: &[bool],
+        numerator: &mut [f64],
+    ) {
+        self.rate_form_switched(t, y, rate, lambda, &mut Switching::Held { branches, numerator });
+    }
+
+    /// Each point's branch of eq. (6) by eq. (9) at the state `y` at `t` (`true`: loading).
+    pub(crate) fn branches(&self, t: f64, y: &[f64], branches: &mut Vec<bool>) {
+        let n = self.body.dofs();
+        let m = self.contact.points.len();
+        let v = &y[n..2 * n];
+        branches.clear();
+        for surface in &self.contact.surfaces {
+            let base = surface.main_body.motion.velocity_at(t);
+            for i in surface.points.clone() {
+                let point = &self.contact.points[i];
+                let v_t = point.tangential.apply(v) - surface.main_body.along(point, base);
+                branches.push(law::loads(&surface.params, &self.point_state(y, n, m, i), v_t));
+            }
+        }
+    }
+
+    /// Eq. (9)'s switching function `N` (the numerator of eq. 5) at point `i` for the nodal
+    /// velocities `velocity(dof)`, its traction `f_t` and structure `1/R*` at `t`; NaN where
+    /// eq. (9) does not apply.
+    pub(crate) fn switching_at(
+        &self,
+        i: usize,
+        t: f64,
+        velocity: impl Fn(usize) -> f64,
+        traction: f64,
+        structure: f64,
+    ) -> f64 {
+        let point = &self.contact.points[i];
+        let surface = &self.contact.surfaces[point.surface];
+        let base = surface.main_body.motion.velocity_at(t);
+        let v_t =
+            point.tangential.terms().map(|(d, c)| c * velocity(d)).sum::<f64>() - surface.main_body.along(point, base);
+        let state =
+            ContactState { traction_t: traction, traction_n: self.contact.traction_n[i], structure, plastic_slip: 0.0 };
+        law::tangential_rate_on_branch(&surface.params, &state, v_t, false).2
+    }
+
+    /// Point `i`'s friction state in the rate form's vector `y` of `n` unknowns and `m` points.
+    fn point_state(&self, y: &[f64], n: usize, m: usize, i: usize) -> ContactState {
+        ContactState {
+            traction_t: y[2 * n + i],
+            traction_n: self.contact.traction_n[i],
+            structure: y[2 * n + m + i],
+            plastic_slip: y[2 * n + 2 * m + i],
+        }
+    }
+
+    fn rate_form_switched(&self, t: f64, y: &[f64], rate: &mut [f64], lambda: &mut [f64], switching: &mut Switching) {
         let n = self.body.dofs();
         let m = self.contact.points.len();
         let (u, rest) = y.split_at(n);
@@ -100,10 +182,10 @@ impl System {
         let mut out = (rate_contact, &mut *lambda);
         for surface in &self.contact.surfaces {
             match surface.terms {
-                1 => self.contact_rates::<1>(surface, t, v, y_contact, &mut out, dv),
-                2 => self.contact_rates::<2>(surface, t, v, y_contact, &mut out, dv),
-                3 => self.contact_rates::<3>(surface, t, v, y_contact, &mut out, dv),
-                _ => self.contact_rates::<4>(surface, t, v, y_contact, &mut out, dv),
+                1 => self.contact_rates::<1>(surface, t, v, y_contact, &mut out, dv, switching),
+                2 => self.contact_rates::<2>(surface, t, v, y_contact, &mut out, dv, switching),
+                3 => self.contact_rates::<3>(surface, t, v, y_contact, &mut out, dv, switching),
+                _ => self.contact_rates::<4>(surface, t, v, y_contact, &mut out, dv, switching),
             }
         }
         for (a, mass) in dv.iter_mut().zip(&self.body.mass) {
@@ -124,6 +206,7 @@ impl System {
         (traction, structure, slip): (&[f64], &[f64], &[f64]),
         ((dtraction, dstructure, dslip), lambda): &mut ((&mut [f64], &mut [f64], &mut [f64]), &mut [f64]),
         dv: &mut [f64],
+        switching: &mut Switching,
     ) {
         let (params, main_body) = (&surface.params, &surface.main_body);
         let base = main_body.motion.velocity_at(t);
@@ -136,11 +219,15 @@ impl System {
                 structure: structure[i],
                 plastic_slip: slip[i],
             };
-            let (rate, multiplier) = law::tangential_rate_and_multiplier(
-                params,
-                &state,
-                point.tangential.apply_n::<N>(v) - main_body.along(point, base),
-            );
+            let v_t = point.tangential.apply_n::<N>(v) - main_body.along(point, base);
+            let (rate, multiplier) = match switching {
+                Switching::ByEq9 => law::tangential_rate_and_multiplier(params, &state, v_t),
+                Switching::Held { branches, numerator } => {
+                    let (rate, multiplier, n) = law::tangential_rate_on_branch(params, &state, v_t, branches[i]);
+                    numerator[i] = n;
+                    (rate, multiplier)
+                }
+            };
             dtraction[i] = rate;
             dstructure[i] = law::structure_rate(params, structure[i], multiplier);
             dslip[i] = multiplier;
