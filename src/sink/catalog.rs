@@ -20,7 +20,7 @@ pub const RUPTURES_HEADER_RING: &str =
     "onset_s,end_s,nucleation_segment,first_segment,last_segment,segments_slipped,max_slip_m,friction_force_drop_n";
 
 /// Header of the openings CSV.
-pub const OPENINGS_HEADER: &str = "contact,onset_s,end_s,closed,first_segment,last_segment,largest_open_length_m";
+pub const OPENINGS_HEADER: &str = "segment,onset_s,end_s,closed,length_m";
 
 /// Writes the catalogs when the run ends (completed, failed or interrupted).
 pub struct CatalogSink {
