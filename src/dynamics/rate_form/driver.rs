@@ -9,6 +9,7 @@ use crate::dynamics::integrator::{Integrator, Statistics};
 use crate::dynamics::memory::{IntegratorMemory, mismatch};
 use crate::dynamics::rate_form::memory::{Pair, RungeKutta};
 use crate::dynamics::rate_form::sdirk4::{FOURTH_ORDER, Sdirk4};
+use crate::dynamics::rate_form::trial::Trial;
 use crate::dynamics::rate_form::tsit5::{FIFTH_ORDER, Tsit5};
 use crate::dynamics::system::System;
 
@@ -39,18 +40,6 @@ impl Pair {
             Pair::Sdirk4(_) => FOURTH_ORDER,
         }
     }
-}
-
-/// One trial step: the new state, its rate and `Λ` there, and the error. Its vectors are
-/// buffers that the driver hands round ([`RungeKutta::spare`]), so that no step allocates.
-#[derive(Debug, Clone, Default)]
-pub(super) struct Trial {
-    y: Vec<f64>,
-    rate: Vec<f64>,
-    lambda: Vec<f64>,
-    /// Eq. (9)'s switching function per point at `y`, where the points are held on branches.
-    numerator: Vec<f64>,
-    error: f64,
 }
 
 /// Where an accepted trial of Tsitouras' pair carries a point across eq. (9)'s switch

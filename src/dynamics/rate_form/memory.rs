@@ -25,7 +25,7 @@ pub struct RungeKutta {
     pub(super) pair: Pair,
     /// Buffers of trial steps, kept so that no step allocates (not state).
     #[serde(skip)]
-    pub(super) spares: Vec<super::driver::Trial>,
+    pub(super) spares: Vec<super::trial::Trial>,
 }
 
 /// A method with its workspace.

@@ -56,6 +56,7 @@ enum Switching<'a> {
 pub mod driver;
 pub mod memory;
 pub mod sdirk4;
+mod trial;
 pub mod tsit5;
 
 use crate::dynamics::contact::{ContactSurface, NormalBehaviour};
