@@ -491,6 +491,8 @@ fn equal_error(rows: &[Row], method: &str, metric: Metric) -> String {
 fn run_paper_case(extra: &[&str], out: &Path) -> (f64, u64, u64) {
     use std::io::Read;
     let case = format!("{}/cases/paper_triangular.toml", env!("CARGO_MANIFEST_DIR"));
+    // Reaped by `wait4` below, which std's `wait` cannot replace: it also returns the usage.
+    #[allow(clippy::zombie_processes)]
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_slipfront"))
         .args(["run", &case, "--progress", "none", "--out-dir", out.to_str().expect("a UTF-8 path")])
         .args(extra)

@@ -76,7 +76,8 @@ fn a_structured_block_of_inexact_spacing_forms_runs_of_equal_stencils() {
     let material = Material { elasticity: PlaneStrain { youngs_modulus: 1.0e3, poisson_ratio: 0.0 }, density: 1000.0 };
     let base = Motion::constant([1e-3, 0.0], 10.0);
     let (nx, ny) = (300, 30);
-    let Assembled { body, .. } = block(10.0, 1.0, nx, ny, material, FrictionParams::paper(), (&|_| 500.0, NormalBehaviour::Held), base);
+    let Assembled { body, .. } =
+        block(10.0, 1.0, nx, ny, material, FrictionParams::paper(), (&|_| 500.0, NormalBehaviour::Held), base);
     let templates = slipfront::linalg::stencil::TemplateMatrix::new(&body.stiffness).unwrap();
     println!("{} runs of equal stencils over {} nodes", templates.runs(), body.dofs() / 2);
     assert!(templates.runs() <= 4 * ny, "{} runs over {ny} free grid rows", templates.runs());

@@ -432,7 +432,7 @@ fn a_stiff_block_holds_on_an_incline_and_slides_at_kinetic_friction() {
     // Steeper than the static coefficient: tan θ = 0.61.
     let owned = ["scene.gravity=[5.16, -8.46]".to_string()];
     let dir = format!("{}/tests/meshes", env!("CARGO_MANIFEST_DIR"));
-    let refused = case::from_str_at(INCLINE, &owned, std::path::Path::new(&dir)).err().expect("refused").to_string();
+    let refused = case::from_str_at(INCLINE, &owned, std::path::Path::new(&dir)).expect_err("refused").to_string();
     println!("incline at tan θ = 0.61: {refused}");
     assert!(refused.contains("scene.gravity") && refused.contains("static strength"), "{refused}");
 }

@@ -254,7 +254,13 @@ impl Congruent {
     }
 
     /// [`element`] of `cell`, or the kept parts of a congruent cell.
-    fn element(&mut self, cell: &Cell, coordinates: &[[f64; 2]], material: &Material, definition: &BodyDefinition) -> CellParts {
+    fn element(
+        &mut self,
+        cell: &Cell,
+        coordinates: &[[f64; 2]],
+        material: &Material,
+        definition: &BodyDefinition,
+    ) -> CellParts {
         let Some(tolerance) = self.tolerance else {
             return element(cell, coordinates, material, definition);
         };

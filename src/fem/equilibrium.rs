@@ -88,7 +88,7 @@ fn solve(assembled: &Assembled, force: &[f64]) -> Result<Equilibrium, String> {
     matrix.mul_vec(&displacement, &mut residual);
     let scale = force.iter().fold(0.0_f64, |m, f| m.max(f.abs()));
     let imbalance = residual.iter().zip(force).fold(0.0_f64, |m, (r, f)| m.max((r - f).abs()));
-    if !(imbalance <= 1e-8 * scale) {
+    if imbalance.is_nan() || imbalance > 1e-8 * scale {
         return Err(not_held.to_string());
     }
     let traction_t = (0..contact.points.len())

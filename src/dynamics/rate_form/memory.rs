@@ -28,7 +28,9 @@ pub struct RungeKutta {
     pub(super) spares: Vec<super::trial::Trial>,
 }
 
-/// A method with its workspace.
+/// A method with its workspace. One per run, so the size of the unboxed Tsitouras variant (the
+/// default's, read on every step) costs nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub(super) enum Pair {
     Tsit5(Tsit5),

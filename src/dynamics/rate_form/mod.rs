@@ -202,10 +202,10 @@ impl System {
                 continue;
             }
             match surface.terms {
-                1 => self.contact_rates::<1>(surface, t, v, y_contact, &mut out, dv, switching),
-                2 => self.contact_rates::<2>(surface, t, v, y_contact, &mut out, dv, switching),
-                3 => self.contact_rates::<3>(surface, t, v, y_contact, &mut out, dv, switching),
-                _ => self.contact_rates::<4>(surface, t, v, y_contact, &mut out, dv, switching),
+                1 => self.contact_rates::<1>(surface, (t, v), y_contact, &mut out, dv, switching),
+                2 => self.contact_rates::<2>(surface, (t, v), y_contact, &mut out, dv, switching),
+                3 => self.contact_rates::<3>(surface, (t, v), y_contact, &mut out, dv, switching),
+                _ => self.contact_rates::<4>(surface, (t, v), y_contact, &mut out, dv, switching),
             }
         }
         for (a, mass) in dv.iter_mut().zip(&self.body.mass) {
@@ -215,14 +215,14 @@ impl System {
 
     /// The contact's part of the right-hand side for one surface whose points read `N` terms
     /// each: the nodal forces `Σ w Ñᵀ f_t` into `dv`, and each point's `ḟ_t` (eq. 6 switched by
-    /// eq. 9), `d(1/R*)/dt` (eq. 4) and `ṗ = Λ` (eq. 5), with `Λ` into `out.1`.
+    /// eq. 9), `d(1/R*)/dt` (eq. 4) and `ṗ = Λ` (eq. 5), with `Λ` into `out.1`, at time `t` and
+    /// nodal velocities `v`.
     #[inline(always)]
     #[allow(clippy::type_complexity)]
     fn contact_rates<const N: usize>(
         &self,
         surface: &ContactSurface,
-        t: f64,
-        v: &[f64],
+        (t, v): (f64, &[f64]),
         (traction, structure, slip): (&[f64], &[f64], &[f64]),
         ((dtraction, dstructure, dslip), lambda): &mut ((&mut [f64], &mut [f64], &mut [f64]), &mut [f64]),
         dv: &mut [f64],
