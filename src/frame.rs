@@ -166,8 +166,9 @@ impl Layout {
                         if self.contacts.len() > 1 { format!("contact {contact:?}") } else { "the contact".into() };
                     warnings.push(format!(
                         "the {} named probes.{what} lie within {} to {} m of {of}'s {} m (arc length), though the \
-                         probe plots colour them from its start to its end as if they spread along it: give them by \
-                         position (x = ... or at = [x, y]) to follow the mesh",
+                         probe plots colour them from its start to its end as if they spread along it: place them \
+                         along the whole contact in the case's [probes], by position (x = ... or at = [x, y], in m) \
+                         to hold them there when the mesh changes",
                         at.len(),
                         crate::validate::shortest(low),
                         crate::validate::shortest(high),

@@ -416,9 +416,10 @@ fn small_study(dir: &Path, name: &str, body: &str) -> PathBuf {
 const POINTS: &str = "case = \"CRATE/cases/spring_block.toml\"\n[set]\n\"time.t_end\" = 30.0\n\
                       [sweep]\n\"scene.stiffness\" = [250.0, 500.0, 1000.0]\n";
 
-/// The paper case to 450 s (its first slips), 2 rows of 2 members.
-const PAPER: &str = "case = \"CRATE/cases/paper_triangular.toml\"\n[set]\n\"time.t_end\" = 450.0\n\
-                     \"time.integrator\" = \"wilson\"\n[ensemble]\nkey = \"friction.structure0\"\nstep = -1.0e-9\n\
+/// The paper case for its 1000 s (so that its verdicts and `summary.png` are made), 2 rows of 2
+/// members.
+const PAPER: &str = "case = \"CRATE/cases/paper_triangular.toml\"\n[set]\n\"time.t_end\" = 1000.0\n\
+                     [ensemble]\nkey = \"friction.structure0\"\nstep = -1.0e-9\n\
                      members = 2\n[sweep]\n\"scene.normal_traction.left\" = [300.0, 350.0]\n";
 
 fn study_command(study: &Path, out: &Path, extra: &[&str]) -> Output {
@@ -465,7 +466,7 @@ fn a_second_study_into_the_same_folder_is_refused_and_shards_share_it() {
     }
     // Another study file of the same name is refused the same way.
     let other = scratch("two-studies-other");
-    let edited = small_study(&other, "paper", &PAPER.replace("450.0", "440.0"));
+    let edited = small_study(&other, "paper", &PAPER.replace("1000.0", "990.0"));
     assert_invalid(&study_command(&edited, &out, &[]), "is being written by another slipfront study");
     let status = first.wait().unwrap();
     assert!(status.success(), "the first study failed");
@@ -514,6 +515,7 @@ fn study_resume_runs_again_every_member_whose_record_or_outputs_do_not_verify() 
     let output = study_command(&study, &clean, &["--quiet"]);
     assert_eq!(code(&output), 0, "{}", text(&output));
     let expected = tables(&clean.join("paper"));
+    assert!(expected.contains_key("summary.png"), "the paper's case for its 1000 s has its verdicts drawn");
 
     let out = dir.join("out");
     copy_folder(&clean.join("paper"), &out.join("paper"));

@@ -21,6 +21,7 @@ use slipfront::run::{LoopOptions, Outcome, run};
 use slipfront::scene;
 use slipfront::sink::rerun::{RerunSink, Viewer, open_stream};
 use slipfront::sink::{Sink, SinkError};
+use slipfront::validate::shortest;
 
 fn scratch(tag: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("slipfront-rec-{tag}-{}", std::process::id()));
@@ -311,6 +312,45 @@ fn check_passes_a_fresh_recording_and_its_expectations() {
     let (code, text) = check_cli(&path, Some(&expect));
     assert_eq!(code, 1, "{text}");
     assert!(text.contains("FAIL: at[0]: contact/friction_force = "), "{text}");
+}
+
+#[test]
+fn an_expectation_at_a_time_outside_the_recording_fails_naming_its_span() {
+    let out = scratch("outside");
+    let path = run_cli("spring_block", &["time.t_end=100"], &out);
+    let recording = rrd::read(&path).unwrap();
+    let force = &recording.series["contact/friction_force"];
+    assert_eq!((force.times[0], *force.times.last().unwrap()), (0.0, 100.0), "the run's rows span 0 to 100 s");
+    let expect = out.join("expect.toml");
+    let at = |time: &str| {
+        std::fs::write(&expect, format!("[[at]]\nentity = \"contact/friction_force\"\ntime = {time}\nmin = -1e300\n"))
+            .unwrap();
+        check_cli(&path, Some(&expect))
+    };
+    // Past the end by rounding (a ten-millionth): the last row, as the run's end is.
+    let (code, text) = at("100.00001");
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains(&format!(
+            "contact/friction_force = {} at t = 100 s, in [-1e300, inf]",
+            shortest(*force.values.last().unwrap())
+        )),
+        "{text}"
+    );
+    // Past the end by more: not the last row's value, a failure that says the span.
+    for (time, side) in
+        [("100.001", "after the last row"), ("5000", "after the last row"), ("-0.5", "before the first row")]
+    {
+        let (code, text) = at(time);
+        assert_eq!(code, 1, "time = {time}: {text}");
+        assert!(
+            text.contains(&format!(
+                "FAIL: at[0].time = {time} s is {side} of the recording: contact/friction_force spans t = 0 to 100 s"
+            )),
+            "time = {time}: {text}"
+        );
+        assert!(!text.contains("contact/friction_force = "), "time = {time}: no value is reported: {text}");
+    }
 }
 
 #[test]

@@ -363,7 +363,7 @@ fn a_study_on_slurm_gives_the_local_files_through_a_cancelled_and_a_requeued_tas
     let dir = std::env::temp_dir().join(format!("slipfront-slurm-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    // The paper case to 450 s, 2 sweep rows of 3 members: about 1.5 s a member.
+    // The paper case for its 1000 s, 2 sweep rows of 3 members: about 1.7 s a member.
     let study = paper_study(&dir, 3, "");
     let local = dir.join("local");
     slipfront(&["study", study.to_str().unwrap(), "--out-dir", local.to_str().unwrap(), "--jobs", "2", "--quiet"]);

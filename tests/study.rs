@@ -18,7 +18,7 @@ fn scratch(tag: &str) -> PathBuf {
     dir
 }
 
-/// The paper case to 450 s, 2 sweep rows × 2 ensemble members ([`paper_study`]).
+/// The paper case for its 1000 s, 2 sweep rows × 2 ensemble members ([`paper_study`]).
 fn small_study(dir: &Path, extra: &str) -> PathBuf {
     paper_study(dir, 2, extra)
 }
@@ -160,7 +160,7 @@ fn a_stop_rule_ends_a_member_early_with_its_outputs_finished() {
     let dir = scratch("stop");
     // Nothing slips in the paper case before about 400 s: `quiet_for = 100` stops every member
     // at 100 s, recorded as such, its recording complete to that step.
-    let path = small_study(&dir, "[stop]\nquiet_for = 100.0\n");
+    let path = small_study(&dir, "[set]\n\"time.integrator\" = \"wilson\"\n[stop]\nquiet_for = 100.0\n");
     let out = dir.join("out");
     let (code, text) = study(&[path.to_str().unwrap(), "--out-dir", out.to_str().unwrap(), "--quiet"]);
     assert_eq!(code, 0, "{text}");
@@ -168,6 +168,14 @@ fn a_stop_rule_ends_a_member_early_with_its_outputs_finished() {
     assert!(record.contains("ending = \"stopped nothing slipped for 100 s, at 100.00 s\""), "{record}");
     let summary = std::fs::read_to_string(out.join("small/summary.md")).unwrap();
     assert!(summary.contains("(0 completed, 2 stopped by a rule); failed: 0"), "{summary}");
+    // Stopped before the paper's 1000 s, its observations are not judged.
+    assert!(
+        summary.contains(
+            "- verdicts: stopped nothing slipped for 100 s, at 100.00 s, before the paper's 1000 s: its \
+             observations are not evaluated"
+        ) && !out.join("small/summary.png").exists(),
+        "{summary}"
+    );
     let check = Command::new(env!("CARGO_BIN_EXE_slipfront"))
         .args(["check", out.join("small/member-0000.rrd").to_str().unwrap()])
         .output()
@@ -193,4 +201,90 @@ fn a_stop_rule_ends_a_member_early_with_its_outputs_finished() {
     let (code, text) = study(&[bad.to_str().unwrap(), "--out-dir", out.to_str().unwrap()]);
     assert_eq!(code, 2, "{text}");
     assert!(text.contains("stop.quiet_for = -5 must be a positive number of seconds"), "{text}");
+}
+
+/// A study file `name.toml` in `dir` of the shipped case `case` with `body` after it.
+fn study_file(dir: &Path, name: &str, case: &str, body: &str) -> PathBuf {
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, format!("case = \"{}/cases/{case}\"\n{body}", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    path
+}
+
+#[test]
+fn the_papers_verdicts_are_given_only_for_the_papers_case() {
+    let dir = scratch("verdicts");
+    // The paper's block for its 1000 s, a row under its rising triangle and one under a falling
+    // one (1300 Pa at the left, 1200 Pa at the right).
+    let paper = study_file(
+        &dir,
+        "family",
+        "paper_triangular.toml",
+        "[sweep]\n\"scene.normal_traction.left\" = [350.0, 1300.0]\n",
+    );
+    let out = dir.join("out");
+    let (code, text) = study(&[paper.to_str().unwrap(), "--out-dir", out.to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 0, "{text}");
+    let summary = std::fs::read_to_string(out.join("family/summary.md")).unwrap();
+    let rows: Vec<&str> = summary.split("## Row ").skip(1).collect();
+    assert_eq!(rows.len(), 2, "{summary}");
+    assert!(rows[0].contains("- verdicts: 1. left end ") && !rows[0].contains("not evaluated"), "{summary}");
+    assert!(
+        rows[1].contains(
+            "- verdicts: not the paper's case: its observations are not evaluated (the normal traction does not \
+             rise from the left end to the right, as the paper's does)"
+        ) && !rows[1].contains("1. left end"),
+        "{summary}"
+    );
+    assert!(summary.contains("on the members of the paper's family only"), "{summary}");
+    assert!(out.join("family/summary.png").is_file(), "one row is judged: its figure is drawn");
+
+    // Not the paper's block, and the paper's block for less than its 1000 s: no verdict, no figure.
+    for (name, case, body, why) in [
+        (
+            "spring",
+            "spring_block.toml",
+            "[set]\n\"time.t_end\" = 50.0\n[sweep]\n\"friction.mu_s\" = [0.4, 0.5]\n",
+            "scene.kind = \"spring_block\", not the paper's block",
+        ),
+        (
+            "short",
+            "paper_triangular.toml",
+            "[set]\n\"time.t_end\" = 50.0\n",
+            "time.t_end = 50 s: the observations count slips in the paper's 1000 s",
+        ),
+    ] {
+        let path = study_file(&dir, name, case, body);
+        let (code, text) = study(&[path.to_str().unwrap(), "--out-dir", out.to_str().unwrap(), "--quiet"]);
+        assert_eq!(code, 0, "{text}");
+        let summary = std::fs::read_to_string(out.join(format!("{name}/summary.md"))).unwrap();
+        let said = format!("not the paper's case: its observations are not evaluated ({why})");
+        assert!(summary.contains(&format!("Verdicts: {said}.")), "{name}: {summary}");
+        assert_eq!(summary.matches(&format!("- verdicts: {said}\n")).count(), summary.matches("## Row ").count());
+        assert!(!summary.contains("left end"), "{name}: {summary}");
+        assert!(!out.join(format!("{name}/summary.png")).exists(), "{name}: no verdicts, no figure");
+    }
+}
+
+#[test]
+fn the_summary_figure_names_the_rows_by_their_swept_values() {
+    use slipfront::study::{spec, summary::row_axis};
+    let shipped =
+        spec::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/studies/normal_stress_sweep.toml")).unwrap();
+    let (axis, labels) = row_axis(&shipped);
+    assert_eq!(axis, "scene.normal_traction.left (Pa) / scene.normal_traction.right (Pa)");
+    assert_eq!(labels.len(), 18);
+    assert_eq!((labels[0].as_str(), labels[17].as_str()), ("0/1200", "500/1400"));
+    // A grid: the keys in alphabetical order, the last varying fastest; text without quotes.
+    let dir = scratch("axis");
+    let grid = study_file(
+        &dir,
+        "grid",
+        "paper_triangular.toml",
+        "[sweep]\n\"time.integrator\" = [\"wilson\", \"tsit5\"]\n\"friction.xi\" = [0.1, 0.05]\n",
+    );
+    let (axis, labels) = row_axis(&spec::load(&grid).unwrap());
+    assert_eq!(axis, "friction.xi (1/s) / time.integrator");
+    assert_eq!(labels, ["0.1/wilson", "0.1/tsit5", "0.05/wilson", "0.05/tsit5"]);
+    let (axis, labels) = row_axis(&spec::load(&small_study(&dir, "")).unwrap());
+    assert_eq!((axis.as_str(), labels), ("scene.normal_traction.left (Pa)", vec!["300".to_string(), "350".into()]));
 }

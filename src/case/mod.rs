@@ -9,6 +9,7 @@ pub mod mesh;
 pub mod overrides;
 pub mod profile;
 pub mod spec;
+pub mod units;
 
 use std::fmt;
 use std::path::Path;

@@ -6,7 +6,9 @@
 //! surface (the paper's segments A, B) and stay "local" if they do not reach the right third
 //! (E, F); a rupture "reaches the whole surface" if every segment slipped.
 
+use crate::case::{Case, NormalTractionSpec, SceneSpec};
 use crate::catalog::events::{Rupture, SlipEvent};
+use crate::validate::shortest;
 
 /// What the catalog says about the paper's observations.
 #[derive(Debug, Clone, PartialEq)]
@@ -111,6 +113,49 @@ impl Observations {
             && self.right_ruptures_partial == 0;
         Verdict { left_end, right_end, propagation }
     }
+}
+
+/// The span the paper's observations 1 and 2 count slips in (s).
+pub const PAPER_SPAN: f64 = 1000.0;
+
+/// Whether the paper's observations 1–3 ([`Verdict`]) say anything of a run of `case`, and if
+/// not, why. They name the contact's ends and thirds by their normal stress (low at the left,
+/// high at the right) and count slips in the paper's 1000 s, so they apply to its family only:
+/// the block scene (any size or mesh density), at least 3 segments, a normal traction that never
+/// falls from the left end to the right and ends higher than it starts, and `t_end` = 1000 s.
+/// Friction, material and loading may differ: whether the observations still hold is then
+/// what a study asks.
+pub fn paper_family(case: &Case) -> Result<(), String> {
+    let SceneSpec::Block(block) = &case.scene else {
+        let kind = match case.scene {
+            SceneSpec::Point(_) => "point",
+            SceneSpec::SpringBlock(_) => "spring_block",
+            SceneSpec::Block(_) => "block",
+            SceneSpec::Mesh(_) => "mesh",
+        };
+        return Err(format!("scene.kind = \"{kind}\", not the paper's block"));
+    };
+    if block.nx < 3 {
+        return Err(format!("scene.nx = {}: the observations compare the contact's thirds", block.nx));
+    }
+    let rising = match &block.normal_traction {
+        NormalTractionSpec::Uniform { .. } => false,
+        NormalTractionSpec::Linear { left, right } => left < right,
+        NormalTractionSpec::Table { value, .. } => {
+            value.windows(2).all(|w| w[0] <= w[1]) && value.first() < value.last()
+        }
+    };
+    if !rising {
+        return Err("the normal traction does not rise from the left end to the right, as the paper's does".into());
+    }
+    if (case.time.t_end - PAPER_SPAN).abs() > 1e-9 * PAPER_SPAN {
+        return Err(format!(
+            "time.t_end = {} s: the observations count slips in the paper's {} s",
+            shortest(case.time.t_end),
+            PAPER_SPAN
+        ));
+    }
+    Ok(())
 }
 
 /// Median of a non-empty list.

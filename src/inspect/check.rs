@@ -12,9 +12,10 @@ use std::path::Path;
 
 use serde::Deserialize;
 
-use crate::inspect::{Recording, Series};
+use crate::inspect::{END_TOLERANCE, Recording, Series};
 use crate::record::digest::SeriesDigest;
 use crate::record::schema::{self, RunEnding, RunInfo};
+use crate::validate::shortest;
 
 /// Optional expectations (`--expect EXPECT.toml`).
 ///
@@ -25,7 +26,7 @@ use crate::record::schema::{self, RunEnding, RunInfo};
 ///
 /// [[at]]
 /// entity = "contact/friction_force"
-/// time = 40.0               # s: the last recorded row at or before it
+/// time = 40.0               # s: the last recorded row at or before it (within the recording)
 /// min = 199.0
 /// max = 201.0
 ///
@@ -394,7 +395,7 @@ fn check_time_axis(
     if early {
         let step = series.steps.last().copied().unwrap_or_default();
         report.summary.push(format!("readable up to t = {last} s (step {step}) of the run's {} s", info.t_end));
-    } else if (last - expected_end).abs() > 1e-6 * expected_end.max(1.0) {
+    } else if (last - expected_end).abs() > END_TOLERANCE * expected_end.max(1.0) {
         problems.push(format!("sim_time ends at {last} s, the run at {expected_end} s"));
     }
     if let Some(e) = ending
@@ -456,7 +457,8 @@ fn check_events(recording: &Recording, info: &RunInfo, e: &RunEnding, expect: &E
     }
 }
 
-/// Each `[[at]]` expectation: the series' last row at or before its time, within its range.
+/// Each `[[at]]` expectation: the series' last row at or before its time, within its range; a
+/// time outside the recording fails.
 fn check_expectations(recording: &Recording, info: &RunInfo, expect: &Expectations, report: &mut Report) {
     for (i, at) in expect.at.iter().enumerate() {
         let name = match series_name(at, info) {
@@ -471,16 +473,15 @@ fn check_expectations(recording: &Recording, info: &RunInfo, expect: &Expectatio
             continue;
         };
         match series.at(at.time) {
-            None => report.problems.push(format!("at[{i}]: {name} has no row at or before t = {} s", at.time)),
+            None => report.problems.push(outside(i, at.time, &name, series)),
             Some((t, v)) => {
                 let low = at.min.is_some_and(|m| v < m);
                 let high = at.max.is_some_and(|m| v > m);
-                let range = format!(
-                    "[{}, {}]",
-                    at.min.map_or("-inf".into(), |m| m.to_string()),
-                    at.max.map_or("inf".into(), |m| m.to_string())
-                );
-                if low || high || !v.is_finite() {
+                let range =
+                    format!("[{}, {}]", at.min.map_or("-inf".into(), shortest), at.max.map_or("inf".into(), shortest));
+                let fails = low || high || !v.is_finite();
+                let (v, t) = (shortest(v), shortest(t));
+                if fails {
                     report.problems.push(format!("at[{i}]: {name} = {v} at t = {t} s, expected in {range}"));
                 } else {
                     report.summary.push(format!("{name} = {v} at t = {t} s, in {range}"));
@@ -488,6 +489,21 @@ fn check_expectations(recording: &Recording, info: &RunInfo, expect: &Expectatio
             }
         }
     }
+}
+
+/// Why `[[at]]` number `i` cannot be judged: its time lies outside the rows of `series`
+/// (`name`), which are said, rather than a value the run never reached taken from its last row.
+fn outside(i: usize, time: f64, name: &str, series: &Series) -> String {
+    let (Some(&first), Some(&last)) = (series.times.first(), series.times.last()) else {
+        return format!("at[{i}]: {name} holds no rows");
+    };
+    let side = if time < first { "before the first row" } else { "after the last row" };
+    format!(
+        "at[{i}].time = {} s is {side} of the recording: {name} spans t = {} to {} s",
+        shortest(time),
+        shortest(first),
+        shortest(last)
+    )
 }
 
 /// The series an expectation names: its entity, and for a per-segment or per-node entity the

@@ -34,6 +34,11 @@ pub struct Recording {
     pub problem: Option<String>,
 }
 
+/// How far (relative, of the time, at least 1 s) a time may pass a series' last row and still
+/// be its last row's: rounding in the sum of steps, the same tolerance by which `check` lets a
+/// run's last row stand for its end.
+pub const END_TOLERANCE: f64 = 1e-6;
+
 /// One scalar series.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Series {
@@ -55,8 +60,14 @@ impl Series {
         self.values = order.iter().map(|&i| self.values[i]).collect();
     }
 
-    /// The value at the last row at or before `time` (s), with that row's time.
+    /// The value at the last row at or before `time` (s), with that row's time; `None` where
+    /// `time` lies outside the rows: before the first, or after the last by more than
+    /// [`END_TOLERANCE`] of it (a recording does not hold the value of a time it never reached).
     pub fn at(&self, time: f64) -> Option<(f64, f64)> {
+        let last = *self.times.last()?;
+        if time > last + END_TOLERANCE * last.abs().max(1.0) {
+            return None;
+        }
         let i = self.times.partition_point(|&t| t <= time + 1e-9 * time.abs().max(1.0));
         (i > 0).then(|| (self.times[i - 1], self.values[i - 1]))
     }

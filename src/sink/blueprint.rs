@@ -257,7 +257,7 @@ fn block_and_profiles(contents: &Contents<'_>, properties: &mut Vec<Properties>)
             chart(&along(&slip_rate_name(contents.slip_rate_threshold)), &written(&["slip_rate"])),
             chart(&along(VIEW_STRUCTURE_PROFILE), &written(&["structure"])),
         ])
-        .with_row_shares([2.0, 1.4, 1.0])
+        .with_row_shares(PROFILE_SHARES)
         .with_name(name)
         .into();
         per_contact.push(column);
@@ -266,6 +266,14 @@ fn block_and_profiles(contents: &Contents<'_>, properties: &mut Vec<Properties>)
         if per_contact.len() == 1 { per_contact.remove(0) } else { Tabs::new(per_contact).into() };
     Horizontal::new([block, profiles]).with_column_shares([3.0, 2.0]).into()
 }
+
+/// The heights of the profiles (strength, slip rate, `1/R*`). A BarChartView in Rerun 0.36 has
+/// no axis setting, and its plot labels the y axis only at ticks a power of ten apart that lie at
+/// least 20 px apart. The strength profile of the paper case (0 to 480 Pa, ticks 100 Pa apart)
+/// at a share of 2 of 4.4 in a top row of 3 of 9.8 had its ticks 17 px apart and showed only
+/// `0`; at these shares in a top row of 3.6 they are 27 px apart, labelled 0 to 400 (official
+/// viewer at 1920 × 1080, 2026-11-26).
+const PROFILE_SHARES: [f32; 3] = [2.4, 1.4, 1.0];
 
 /// The name of the slip-rate profile: its log scale and the floor it counts from
 /// ([`crate::sink::slip_front::slip_rate_decades`]).
@@ -306,7 +314,9 @@ fn root(contents: &Contents<'_>, properties: &mut Vec<Properties>) -> ContainerL
     if !contents.spatial {
         return series;
     }
+    // The middle row keeps its 3.4 of 9.8 for its lanes (LANES_AT_OPEN); the top row takes 0.6
+    // from the probe plots for the profiles' labels (PROFILE_SHARES).
     Vertical::new([block_and_profiles(contents, properties), map_and_lanes(contents), series])
-        .with_row_shares([3.0, 3.4, 3.4])
+        .with_row_shares([3.6, 3.4, 2.8])
         .into()
 }

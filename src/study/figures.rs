@@ -13,6 +13,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
+use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint};
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
@@ -374,11 +375,12 @@ pub struct Proportions {
 }
 
 /// Writes proportions per row with their Wilson 95 % intervals (`interval`), one colour per
-/// series, side by side within each row.
+/// series, side by side within each row; the x axis is named `axis.0` and row `i` labelled
+/// `axis.1[i]` (every k-th row where the labels would overlap).
 pub fn plot_proportions(
     path: &Path,
     title: &str,
-    rows: usize,
+    axis: (&str, &[String]),
     series: &[Proportions],
     interval: fn(usize, usize) -> (f64, f64),
 ) -> Result<(), String> {
@@ -389,19 +391,22 @@ pub fn plot_proportions(
     {
         let root = BitMapBackend::with_buffer(&mut pixels, (WIDTH, HEIGHT)).into_drawing_area();
         root.fill(&WHITE).map_err(draw_error)?;
+        let (name, labels) = axis;
+        let rows = labels.len();
+        let every = label_stride(labels, WIDTH - 2 * 16 - 70);
+        let labelled: Vec<f64> = (0..rows).step_by(every).map(|row| row as f64).collect();
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 22))
             .margin(16)
             .x_label_area_size(45)
             .y_label_area_size(70)
-            .build_cartesian_2d(-0.5..(rows as f64 - 0.5), 0.0..1.0)
+            .build_cartesian_2d(RowAxis { rows, labelled }, 0.0..1.0)
             .map_err(draw_error)?;
         chart
             .configure_mesh()
-            .x_desc("row of the study (summary.md)")
+            .x_desc(name)
             .y_desc("share of members")
-            .x_labels(rows.min(40))
-            .x_label_formatter(&|v| if (v - v.round()).abs() < 1e-9 { format!("{}", v.round()) } else { String::new() })
+            .x_label_formatter(&|v| labels.get(v.round() as usize).cloned().unwrap_or_default())
             .label_style(("sans-serif", 15))
             .draw()
             .map_err(draw_error)?;
@@ -444,9 +449,77 @@ pub fn plot_proportions(
     write_png(path, &pixels)
 }
 
+/// An x axis of rows `0, 1, …` (row `i` spans `i ± 0.5`), ticked at the rows `labelled` only.
+struct RowAxis {
+    rows: usize,
+    labelled: Vec<f64>,
+}
+
+impl Ranged for RowAxis {
+    type FormatOption = DefaultFormatting;
+    type ValueType = f64;
+
+    fn map(&self, value: &f64, limit: (i32, i32)) -> i32 {
+        RangedCoordf64::from(self.range()).map(value, limit)
+    }
+
+    fn key_points<Hint: KeyPointHint>(&self, hint: Hint) -> Vec<f64> {
+        if hint.weight().allow_light_points() { Vec::new() } else { self.labelled.clone() }
+    }
+
+    fn range(&self) -> std::ops::Range<f64> {
+        -0.5..(self.rows as f64 - 0.5)
+    }
+}
+
+/// Every how many rows a label fits: the widest label at the axis' font, plus a gap of 8 px,
+/// over `width` px of axis.
+fn label_stride(labels: &[String], width: u32) -> usize {
+    register_font();
+    let font: FontDesc<'_> = ("sans-serif", 15).into_font();
+    let widest = labels.iter().map(|l| font.box_size(l).map_or(0, |(w, _)| w)).max().unwrap_or(0);
+    let widest = f64::from(widest) + 8.0;
+    let per_row = f64::from(width) / labels.len().max(1) as f64;
+    ((widest / per_row).ceil() as usize).max(1)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn proportions_png(labels: &[String], name: &str) -> Vec<u8> {
+        let path = std::env::temp_dir().join(format!("slipfront-proportions-{name}-{}.png", std::process::id()));
+        let series = [Proportions { label: "1. left end".into(), counts: vec![(1, 2); labels.len()] }];
+        plot_proportions(&path, "t", ("scene.normal_traction.left (Pa)", labels), &series, |_, _| (0.2, 0.8)).unwrap();
+        let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()));
+        let mut reader = decoder.read_info().unwrap();
+        let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
+        reader.next_frame(&mut pixels).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        pixels
+    }
+
+    #[test]
+    fn rows_are_labelled_by_their_values_below_the_plot() {
+        let values: Vec<String> = ["300", "350"].map(String::from).to_vec();
+        let others: Vec<String> = ["1e3", "2e3"].map(String::from).to_vec();
+        let (a, b) = (proportions_png(&values, "a"), proportions_png(&others, "b"));
+        let row = (WIDTH * 3) as usize;
+        let band = (HEIGHT - 16 - 45) as usize * row;
+        assert_eq!(a[..band], b[..band], "the plot above the axis' labels is the same");
+        assert_ne!(a[band..], b[band..], "the labels below the axis are the rows' own");
+    }
+
+    #[test]
+    fn labels_too_wide_for_every_row_are_thinned() {
+        register_font();
+        let labels = |n: usize| vec!["350/1200".to_string(); n];
+        let (width, _) = ("sans-serif", 15).into_font().box_size("350/1200").unwrap();
+        assert!((50..66).contains(&width), "{width} px");
+        assert_eq!(label_stride(&labels(2), 1298), 1);
+        assert_eq!(label_stride(&labels(18), 1298), 1, "the shipped sweep's 18 rows, 72 px apart");
+        assert_eq!(label_stride(&labels(40), 1298), 3, "32 px apart");
+    }
 
     #[test]
     fn the_time_axis_ends_where_an_interrupted_runs_data_ends() {

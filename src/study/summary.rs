@@ -13,9 +13,9 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use crate::case::SceneSpec;
-use crate::catalog::events::SlipEvent;
-use crate::catalog::observations::Observations;
+use crate::case::units::with_unit;
+use crate::catalog::events::{Rupture, SlipEvent};
+use crate::catalog::observations::{Observations, PAPER_SPAN, paper_family};
 use crate::inspect::catalog;
 use crate::study::figures::{Proportions, plot_proportions};
 use crate::study::record::{MemberRecord, Standing, output, standing};
@@ -34,8 +34,9 @@ struct Finished<'s> {
     events: usize,
     ruptures: usize,
     slips_per_segment: Vec<usize>,
-    /// The paper's observations 1–3 ([`crate::catalog::observations::Verdict`]); block scenes.
-    verdict: Option<[bool; 3]>,
+    /// The paper's observations 1–3 ([`crate::catalog::observations::Verdict`]), or why they
+    /// are not evaluated ([`judge`]).
+    verdict: Result<[bool; 3], String>,
 }
 
 /// How many of a study's members are finished and failed, as [`write`] found them, and the
@@ -91,16 +92,7 @@ fn read_catalogs<'s>(dir: &Path, member: &'s Member, record: MemberRecord) -> Op
     for e in &events {
         *slips_per_segment.get_mut(e.segment)? += 1;
     }
-    let judged = matches!(member.case.scene, SceneSpec::Block(_)) && segments >= 3;
-    let verdict = if judged && record.onset_structure.len() == events.len() {
-        for (event, structure) in events.iter_mut().zip(&record.onset_structure) {
-            event.structure_before = Some(*structure).filter(|s| !s.is_nan());
-        }
-        let v = Observations::measure(&events, &ruptures, segments).verdict();
-        Some([v.left_end, v.right_end, v.propagation])
-    } else {
-        None
-    };
+    let verdict = judge(member, &record, &mut events, &ruptures);
     Some(Finished {
         member,
         lines: text.lines().skip(1).filter(|l| !l.is_empty()).map(str::to_string).collect(),
@@ -111,6 +103,35 @@ fn read_catalogs<'s>(dir: &Path, member: &'s Member, record: MemberRecord) -> Op
         record,
     })
 }
+
+/// The paper's observations 1–3 on a finished member, or why they are not evaluated: its case
+/// is not of the paper's family ([`paper_family`]), it stopped by a rule before the paper's
+/// 1000 s, or its record lacks `1/R*` at its events' onsets.
+fn judge(
+    member: &Member,
+    record: &MemberRecord,
+    events: &mut [SlipEvent],
+    ruptures: &[Rupture],
+) -> Result<[bool; 3], String> {
+    paper_family(&member.case).map_err(|why| format!("{NOT_THE_PAPERS} ({why})"))?;
+    if record.ending != "completed" {
+        return Err(format!(
+            "{}, before the paper's {PAPER_SPAN} s: its observations are not evaluated",
+            record.ending
+        ));
+    }
+    if record.onset_structure.len() != events.len() {
+        return Err("the record lacks 1/R* at the events' onsets: the observations are not evaluated".into());
+    }
+    for (event, structure) in events.iter_mut().zip(&record.onset_structure) {
+        event.structure_before = Some(*structure).filter(|s| !s.is_nan());
+    }
+    let v = Observations::measure(events, ruptures, record.segments).verdict();
+    Ok([v.left_end, v.right_end, v.propagation])
+}
+
+/// What the summary says where a case is not of the paper's family.
+pub const NOT_THE_PAPERS: &str = "not the paper's case: its observations are not evaluated";
 
 /// Every finished member's events, its index, row, ensemble index and parameters first.
 fn events_table(study: &Study, finished: &[Finished<'_>]) -> String {
@@ -129,9 +150,11 @@ fn events_table(study: &Study, finished: &[Finished<'_>]) -> String {
 }
 
 /// `summary.png`: per row, the share of finished members in which each of the paper's
-/// observations holds, with its 95 % interval; none for studies of scenes without verdicts.
+/// observations holds, with its 95 % interval, against the rows' swept values ([`row_axis`]);
+/// none where no member was judged (a study of another case than the paper's).
 fn verdict_figure(study: &Study, path: &Path, finished: &[Finished<'_>]) -> Result<(), String> {
-    if finished.iter().all(|f| f.verdict.is_none()) {
+    if finished.iter().all(|f| f.verdict.is_err()) {
+        let _ = std::fs::remove_file(path);
         return Ok(());
     }
     let labels = ["1. left end", "2. right end", "3. propagation", "all three"];
@@ -142,8 +165,11 @@ fn verdict_figure(study: &Study, path: &Path, finished: &[Finished<'_>]) -> Resu
             label: label.to_string(),
             counts: (0..study.rows)
                 .map(|row| {
-                    let judged: Vec<[bool; 3]> =
-                        finished.iter().filter(|f| f.member.row == row).filter_map(|f| f.verdict).collect();
+                    let judged: Vec<[bool; 3]> = finished
+                        .iter()
+                        .filter(|f| f.member.row == row)
+                        .filter_map(|f| f.verdict.clone().ok())
+                        .collect();
                     let held = judged.iter().filter(|v| if i == 3 { v.iter().all(|&b| b) } else { v[i] }).count();
                     (held, judged.len())
                 })
@@ -151,7 +177,35 @@ fn verdict_figure(study: &Study, path: &Path, finished: &[Finished<'_>]) -> Resu
         })
         .collect();
     let title = format!("{}: the paper's observations per row, with Wilson 95 % intervals", study.name);
-    plot_proportions(path, &title, study.rows, &series, wilson_interval)
+    let (axis, labels) = row_axis(study);
+    plot_proportions(path, &title, (&axis, &labels), &series, wilson_interval)
+}
+
+/// How `summary.png` names its rows: the swept keys with their units (`scene.normal_traction.left
+/// (Pa)`, several joined by ` / `), and per row its values in the same order (`300/1200`).
+/// A study without a sweep has one row, the base case.
+pub fn row_axis(study: &Study) -> (String, Vec<String>) {
+    let keys = &study.varying[..study.swept];
+    if keys.is_empty() {
+        return ("the base case (nothing swept)".into(), vec!["base case".into(); study.rows]);
+    }
+    let axis = keys.iter().map(|k| with_unit(k)).collect::<Vec<_>>().join(" / ");
+    let labels = (0..study.rows)
+        .map(|row| {
+            let member = &study.members[row * study.members_per_row];
+            member.parameters[..study.swept].iter().map(|(_, v)| value_text(v)).collect::<Vec<_>>().join("/")
+        })
+        .collect();
+    (axis, labels)
+}
+
+/// A swept value as a label: numbers in their shortest form, text without quotes.
+fn value_text(value: &toml::Value) -> String {
+    match value {
+        toml::Value::Float(x) => crate::validate::shortest(*x),
+        toml::Value::String(text) => text.clone(),
+        other => other.to_string(),
+    }
 }
 
 /// The Wilson score interval of a proportion `x / n` at 95 % (`z = 1.96`).
@@ -199,11 +253,19 @@ fn summary(
         members(study.members_per_row),
         study.case_path.display()
     );
-    out.push_str(
-        "Mean ± standard error over a row's finished members, counted from their catalogs; failed members are \
-         left out. Verdicts: the paper's observations 1–3 (`Verdict`: left end, right end, propagation) as \
-         members holding / members, with the Wilson 95 % interval of the proportion.\n\n",
-    );
+    out.push_str("Mean ± standard error over a row's finished members, counted from their catalogs; failed members are left out. ");
+    match study.members.iter().map(|m| paper_family(&m.case)).find(Result::is_ok) {
+        Some(_) => out.push_str(
+            "Verdicts: the paper's observations 1–3 (`Verdict`: left end, right end, propagation) as members holding \
+             / members, with the Wilson 95 % interval of the proportion, on the members of the paper's family only \
+             (its block of at least 3 segments under a normal traction rising from left to right, run for its whole \
+             1000 s).\n\n",
+        ),
+        None => {
+            let why = study.members.first().and_then(|m| paper_family(&m.case).err()).unwrap_or_default();
+            let _ = write!(out, "Verdicts: {NOT_THE_PAPERS} ({why}).\n\n");
+        }
+    }
     for row in 0..study.rows {
         let first = &study.members[row * study.members_per_row];
         let swept: Vec<(String, String)> =
@@ -267,7 +329,13 @@ fn row_statistics(out: &mut String, members: &[&Finished<'_>], failed: usize) {
         .map(|s| stat(&|m: &Finished<'_>| m.slips_per_segment.get(s).copied().unwrap_or(0) as f64))
         .collect();
     let _ = writeln!(out, "- slips per segment, from the left: {}", per_segment.join(" | "));
-    let judged: Vec<[bool; 3]> = members.iter().filter_map(|m| m.verdict).collect();
+    let judged: Vec<[bool; 3]> = members.iter().filter_map(|m| m.verdict.clone().ok()).collect();
+    let unjudged: Vec<&String> = members.iter().filter_map(|m| m.verdict.as_ref().err()).collect();
+    if let (true, Some(why)) = (judged.is_empty(), unjudged.first()) {
+        let _ = writeln!(out, "- verdicts: {why}");
+    } else if let Some(why) = unjudged.first() {
+        let _ = writeln!(out, "- not judged: {} ({why})", plural(unjudged.len(), "member"));
+    }
     if !judged.is_empty() {
         let n = judged.len();
         let share = |held: usize| {
