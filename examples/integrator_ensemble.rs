@@ -4,7 +4,7 @@
 //! Wilson's 95 % score interval for a binomial proportion, and the ensemble's medians.
 //!
 //! Wilson's θ = 1.4 damps the block's ringing numerically; SDIRK4 damps it less, Tsitouras' pair
-//! (with its steps bounded so that it amplifies no mode more than 2× over the run) and central
+//! (with its steps bounded so that it amplifies no mode more than 2× per 1000 s) and central
 //! differences hardly at all. If the paper's conclusions came from numerical damping, the
 //! counts would differ by more than their intervals.
 //!
