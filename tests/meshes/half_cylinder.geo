@@ -1,5 +1,5 @@
 // The lower half of a cylinder of radius 1 m (centre (0, 1)) resting on a rigid flat base at
-// y = 0, for Hertz's and Cattaneo-Mindlin's line contact (tests/normal.rs): its lower arc
+// y = 0, for Hertz's line contact (tests/normal.rs): its lower arc
 // from -60 to +60 degrees is the frictional contact ("arc"), its flat top ("top") is moved
 // by the tests, the rest of the arc ("sides") is free. Quadrilaterals of 5 mm near the
 // bottom, growing to 0.1 m. Written with Gmsh 4.15.2 (`pip install gmsh==4.15.2`):
