@@ -73,9 +73,9 @@ const LISTED: &[(&str, &[(&str, How)])] = &[
         "docs/applications.md",
         &[
             ("slipfront run cases/pile_pullout.toml", Run),
-            ("slipfront figures recordings/pile_pullout.rrd --at 0.65,1.5,2.5,3.5,5,30", Run),
+            ("slipfront figures recordings/pile_pullout.rrd --at 1,2,3,3.75,5,30", Run),
             ("slipfront run cases/fault_at_depth.toml", Run),
-            ("slipfront figures recordings/fault_at_depth.rrd --at 400,560,850,856,862", Run),
+            ("slipfront figures recordings/fault_at_depth.rrd --at 400,585,590,594,598,605", Run),
             ("slipfront study cases/studies/fault_ensemble.toml", Shortened("--shard 1/16")),
             (
                 "python3 scripts/fault_depth_bins.py recordings/fault_ensemble/events.csv",

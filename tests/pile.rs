@@ -114,3 +114,52 @@ fn the_kinetic_pull_out_force_of_a_lithostatic_shaft_is_pi_r_mu_k_k_gamma_l_squa
     assert!(upper.windows(2).all(|w| w[1] > w[0]), "the slip front runs down the upper shaft: {first:?}");
     assert!(first[39] < first[30], "the tip nucleates its own slip: {first:?}");
 }
+
+/// The shaft's forces are totals around the circumference, so every unit a user reads says N,
+/// not N/m: the ruptures CSV's header, the recorded friction force's series name (as the
+/// official Rerun SDK reads it from the file) and `check`'s summary. A run of the shipped case
+/// to 1.5 s, past the first slip at the surface (0.76 s), through the binary as a user runs it.
+#[test]
+fn a_pile_run_names_its_forces_in_n_in_the_catalog_the_recording_and_check() {
+    let out = std::env::temp_dir().join(format!("slipfront-pile-units-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let run = common::binary()
+        .args(["run", &common::case_path("pile_pullout.toml"), "--set", "time.t_end=1.5", "--out-dir"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "run: {}", String::from_utf8_lossy(&run.stderr));
+
+    let ruptures = std::fs::read_to_string(out.join("pile_pullout.ruptures.csv")).unwrap();
+    let header = ruptures.lines().next().unwrap();
+    assert_eq!(header.rsplit(',').next(), Some("friction_force_drop_n"), "the ruptures header: {header}");
+    assert!(ruptures.lines().count() > 1, "the run to 1.5 s has a rupture: {ruptures}");
+
+    let rrd = out.join("pile_pullout.rrd");
+    let check = common::binary().arg("check").arg(&rrd).output().unwrap();
+    let printed = String::from_utf8_lossy(&check.stdout);
+    assert!(check.status.success(), "check: {printed}{}", String::from_utf8_lossy(&check.stderr));
+    assert!(
+        printed.lines().any(|l| l.ends_with("contact/friction_force is the total around the circumference, in N")),
+        "check names the force's unit: {printed}"
+    );
+    assert!(!printed.contains("N/m"), "check prints no force per metre: {printed}");
+
+    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/python/read_series_names.py");
+    let names = std::process::Command::new("python3").arg(script).arg(&rrd).arg("contact/friction_force").output();
+    match names {
+        Ok(o) if o.status.success() => {
+            let text = String::from_utf8(o.stdout).unwrap();
+            let name: Vec<&str> = text.lines().skip(1).map(|l| l.splitn(3, ',').nth(2).unwrap()).collect();
+            assert_eq!(name, ["friction force (N)"], "the recorded series' name: {text}");
+        }
+        Ok(o) if o.status.code() == Some(3) => {
+            common::skip_missing::<()>("the official Rerun Python SDK (pip install \"rerun-sdk[datafusion]==0.36.*\")");
+        }
+        Ok(o) => panic!("{script}: {}", String::from_utf8_lossy(&o.stderr)),
+        Err(_) => {
+            common::skip_missing::<()>("python3");
+        }
+    }
+    std::fs::remove_dir_all(&out).unwrap();
+}
