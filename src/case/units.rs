@@ -22,6 +22,7 @@ pub fn unit_of(key: &str) -> Option<&'static str> {
         "density" => "kg/m³",
         "mass" => "kg/m²",
         "velocity" | "base_velocity" | "slip_rate_threshold" => "m/s",
+        "gravity" => "m/s²",
         _ => return None,
     })
 }
@@ -44,7 +45,7 @@ mod tests {
     #[test]
     fn units_agree_with_the_case_reference() {
         let docs = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/cases.md")).unwrap();
-        let names = ["fixed", "group", "file", "integrator", "rstar_law", "kind"];
+        let names = ["fixed", "group", "file", "integrator", "rstar_law", "kind", "axisymmetric"];
         let (mut in_unit_table, mut checked) = (false, 0);
         for line in docs.lines() {
             let cells: Vec<&str> = line.trim().trim_matches('|').split(" | ").map(str::trim).collect();
