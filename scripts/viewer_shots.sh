@@ -7,7 +7,8 @@
 # CLI 0.36 (pip install "rerun-sdk==0.36.*"; `python3 -m rerun` serves the web viewer) and
 # slipfront (target/release/slipfront, or SLIPFRONT=PATH). Software rendering, no GPU. The time
 # cursor is set by the blueprint file `slipfront view RECORDING --at SECONDS --no-open` writes,
-# served with the recording; no clicks.
+# served with the recording; no clicks. Each shot waits VIEWER_SHOTS_WAIT seconds (default 60)
+# for the viewer to load: give a long recording on a busy machine more.
 set -euo pipefail
 [ $# -ge 2 ] || { sed -n 2,10p "$0"; exit 2; }
 rec=$(realpath "$1"); out=$2; shift 2
@@ -40,7 +41,7 @@ shot() {
     --user-data-dir="$tmp/profile-$RANDOM" --window-position=0,0 --window-size=1920,1080 \
     --app="http://127.0.0.1:$web/?url=rerun%2Bhttp%3A%2F%2F127.0.0.1%3A$grpc%2Fproxy" \
     >"$tmp/chromium.log" 2>&1 & pids+=($!)
-  sleep 60
+  sleep "${VIEWER_SHOTS_WAIT:-60}"
   # Without Chromium's warning bar about --no-sandbox (the top 55 px).
   DISPLAY=$display import -window root -crop 1920x1025+0+55 +repage "$png"
   for p in "${pids[@]}"; do kill -- "-$p" 2>/dev/null || true; done
