@@ -264,6 +264,50 @@ fn record_rules() {
     );
 }
 
+/// The keys of a contact's normal behaviour: each refused naming the key, the value and the
+/// rule; an array item may be named in `--set` as messages name it (`contacts[0]`) or dotted.
+#[test]
+fn normal_behaviour_rules() {
+    let cylinder = case("cylinder_on_base.toml");
+    expect_invalid(
+        &cylinder,
+        &["scene.contacts[0].normal=\"held\""],
+        "scene.contacts[0].gap = {...} needs scene.contacts[0].normal = \"evolving\": a held contact has no gap",
+    );
+    expect_invalid(
+        &cylinder,
+        &["scene.contacts.0.normal=\"bogus\""],
+        "scene.contacts[0].normal: unknown variant `bogus`, expected `held` or `evolving`",
+    );
+    expect_invalid(
+        &cylinder,
+        &["scene.contacts[0].base_velocity=[0.1, 0.2]"],
+        "scene.contacts[0].base_velocity = [vx, vy] of an evolving contact must be a number, a speed along the \
+         contact",
+    );
+    expect_invalid(
+        &cylinder,
+        &["scene.contacts[0].gap={kind=\"uniform\", value=-1}"],
+        "scene.contacts[0].gap.value = -1 must be greater than or equal to 0",
+    );
+    expect_invalid(
+        &cylinder,
+        &["scene.contacts[1].normal=\"held\""],
+        "scene.contacts.1 must index an existing item of the array (0 to 0)",
+    );
+    expect_invalid(
+        &case("point_loading.toml"),
+        &["scene.phases[0].normal_velocity=1e-3"],
+        "scene.phases[0].normal_velocity = 0.001 needs scene.normal = \"evolving\": a held normal traction does not \
+         move",
+    );
+    expect_invalid(
+        &case("spring_block.toml"),
+        &["scene.normal=\"evolving\""],
+        "scene.normal: unknown field `normal`, expected one of `mass`, `stiffness`, `velocity`, `normal_traction`",
+    );
+}
+
 #[test]
 fn viewer_options_are_checked_before_solving() {
     let out = scratch_dir("viewer");

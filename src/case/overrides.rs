@@ -1,7 +1,8 @@
 //! `--set KEY=VALUE`: overrides applied to the parsed TOML table before validation.
 //!
-//! `KEY` is a dotted path (`time.t_end`, `scene.phases.1.velocity` for array items); `VALUE`
-//! is a TOML value (`50`, `1e-3`, `"eq4"`, `[1, 2]`); a bare word that is not TOML is taken
+//! `KEY` is a dotted path (`time.t_end`, `scene.phases.1.velocity` for array items, which may
+//! also be written as the messages name them, `scene.phases[1].velocity`); `VALUE` is a TOML
+//! value (`50`, `1e-3`, `"eq4"`, `[1, 2]`); a bare word that is not TOML is taken
 //! as a string, so `friction.rstar_law=eq4` works too.
 
 use crate::case::error::CaseError;
@@ -11,7 +12,7 @@ pub fn apply(table: &mut toml::Table, item: &str) -> Result<(), CaseError> {
     let Some((key, raw)) = item.split_once('=') else {
         return Err(CaseError::Override(format!("--set {item}: expected KEY=VALUE, e.g. --set time.t_end=50")));
     };
-    let key = key.trim();
+    let key = &dotted(key.trim());
     let raw = raw.trim();
     if key.is_empty() || key.split('.').any(str::is_empty) {
         return Err(CaseError::Override(format!("--set {item}: the key must be a dotted path such as time.t_end")));
@@ -28,6 +29,25 @@ pub fn apply(table: &mut toml::Table, item: &str) -> Result<(), CaseError> {
         *table = t;
     }
     result
+}
+
+/// `key` with each array index written `name[i]`, as messages name keys, turned into `name.i`.
+fn dotted(key: &str) -> String {
+    let mut out = String::with_capacity(key.len());
+    let mut rest = key;
+    while let Some(open) = rest.find('[') {
+        let Some(close) = rest[open..].find(']').map(|c| open + c) else { break };
+        let index = &rest[open + 1..close];
+        if index.is_empty() || !index.bytes().all(|b| b.is_ascii_digit()) {
+            break;
+        }
+        out.push_str(&rest[..open]);
+        out.push('.');
+        out.push_str(index);
+        rest = &rest[close + 1..];
+    }
+    out.push_str(rest);
+    out
 }
 
 fn parse_value(raw: &str) -> toml::Value {
