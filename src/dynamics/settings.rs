@@ -15,7 +15,8 @@ pub struct Settings {
     pub max_iterations: usize,
     /// With `Some(share)`, the energy balance is kept from the start and a step after which the
     /// integrator has created more than `share` of the work put in (or of the contact's
-    /// kinetic-strength energy, early on) fails with [`StepError::EnergyCreated`].
+    /// kinetic-strength energy or the body's kinetic energy at the drive's speed, early on) fails with
+    /// [`StepError::EnergyCreated`].
     pub energy_tolerance: Option<f64>,
     /// How each Newton iteration solves for its correction.
     pub linear_solver: LinearSolver,

@@ -27,8 +27,8 @@ pub struct System {
     /// central differences never need it).
     operator: Option<Operator>,
     ledger: Option<EnergyLedger>,
-    /// `Σ w (μ_k f_n)² / 2α_t`: the contact springs' energy at kinetic strength, the scale the
-    /// energy check uses before much work has been done.
+    /// The scale the energy check uses before much work has been done: the larger of
+    /// [`strength_energy`] and [`drive_energy`].
     energy_scale: f64,
     split_steps: u64,
 }
@@ -66,16 +66,7 @@ impl System {
             point.scatter(point.weight * s.traction_t, &mut initial_contact_force);
         }
         let n_points = contact.points.len();
-        let energy_scale = contact
-            .points
-            .iter()
-            .zip(&contact.traction_n)
-            .enumerate()
-            .map(|(k, (point, f_n))| {
-                let p = contact.params(k);
-                point.weight * (p.mu_k * f_n).powi(2) / (2.0 * p.alpha_t)
-            })
-            .sum();
+        let energy_scale = strength_energy(&contact).max(drive_energy(&body, settings.velocity_scale));
         let mut system = Self {
             state: State {
                 time: 0.0,
@@ -272,4 +263,23 @@ impl System {
         self.contact.scatter_normal_corrections(&s.displacement, &mut imbalance);
         max_abs(&imbalance)
     }
+}
+
+/// `Σ w (μ_k f_n)² / 2α_t`: the contact springs' energy at kinetic strength (J/m).
+fn strength_energy(contact: &ContactBoundary) -> f64 {
+    let points = contact.points.iter().zip(&contact.traction_n).enumerate();
+    points
+        .map(|(k, (point, f_n))| {
+            point.weight * (contact.params(k).mu_k * f_n).powi(2) / (2.0 * contact.params(k).alpha_t)
+        })
+        .sum()
+}
+
+/// `½ M v²`: the body's kinetic energy moving as a whole at the drive's speed `v` (J/m), its mass
+/// `M` that of the free degrees of freedom along one direction (`Σ m_i / 2` in the plane). The
+/// scale of a body that a boundary moves and whose contact starts unpressed (no strength
+/// energy): its first steps put in almost no work, and the rounding of the ledger's first
+/// step would otherwise be judged against nothing.
+fn drive_energy(body: &LinearBody, velocity_scale: f64) -> f64 {
+    0.5 * (0.5 * body.mass.iter().sum::<f64>()) * velocity_scale * velocity_scale
 }
