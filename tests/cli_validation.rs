@@ -292,6 +292,18 @@ fn normal_behaviour_rules() {
     );
     expect_invalid(
         &cylinder,
+        &["scene.contacts[0].gap={kind=\"table\", along=\"x\", at=[-0.1, 0.1], value=[0, 0.01]}"],
+        "scene.contacts[0].gap.at = [-0.1, …, 0.1] must cover the contact, whose Gauss points lie from \
+         -0.8545627637135176 to 0.8545627637739784 m in x",
+    );
+    expect_invalid(
+        &cylinder,
+        &["scene.contacts[0].gap={kind=\"lithostatic\", level=0, unit_weight=1}"],
+        "scene.contacts[0].gap = {kind = \"lithostatic\", ...} must be uniform, linear or a table: a gap is a \
+         distance (m), not a stress",
+    );
+    expect_invalid(
+        &cylinder,
         &["scene.contacts[1].normal=\"held\""],
         "scene.contacts.1 must index an existing item of the array (0 to 0)",
     );

@@ -85,6 +85,8 @@ const LISTED: &[(&str, &[(&str, How)])] = &[
                     "/scripts/fault_depth_bins.py recordings/fault_ensemble/events.csv"
                 )),
             ),
+            ("slipfront run cases/cylinder_on_base.toml", Run),
+            ("slipfront figures recordings/cylinder_on_base.rrd --at 0.4,0.7,0.95,1.05", Run),
         ],
     ),
     (

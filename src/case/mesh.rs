@@ -348,6 +348,13 @@ impl ContactSpec {
         self.normal_traction.check(&mut traction);
         c.absorb(traction);
         if let Some(gap) = &self.gap {
+            if matches!(gap, ProfileSpec::Lithostatic { .. }) {
+                c.fail(
+                    "gap",
+                    "{kind = \"lithostatic\", ...}",
+                    "must be uniform, linear or a table: a gap is a distance (m), not a stress",
+                );
+            }
             if self.normal != NormalBehaviour::Evolving {
                 let rule = format!("needs {} = \"evolving\": a held contact has no gap", c.key("normal"));
                 c.fail("gap", "{...}", rule);
@@ -596,23 +603,10 @@ impl MeshSpec {
                 .iter()
                 .flat_map(|s| s.gauss_points(&loaded.mesh.nodes).map(|g| g.position))
                 .collect();
-            if let Some((along, from, to)) = contact.normal_traction.covers() {
-                let (low, high) = points
-                    .iter()
-                    .map(|p| along.of(*p))
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| (a.min(s), b.max(s)));
-                if from > low || to < high {
-                    c.fail(
-                        &format!("{key}.at"),
-                        format!("[{}, …, {}]", shortest(from), shortest(to)),
-                        format!(
-                            "must cover the contact, whose Gauss points lie from {} to {} m in {along:?}",
-                            shortest(low),
-                            shortest(high)
-                        ),
-                    );
-                    continue;
-                }
+            let gap_key = format!("contacts[{i}].gap");
+            let gap_covers = contact.gap.as_ref().is_none_or(|gap| covers_contact(gap, &points, &gap_key, c));
+            if !covers_contact(&contact.normal_traction, &points, &key, c) || !gap_covers {
+                continue;
             }
             let values: Vec<f64> = points.iter().map(|p| contact.normal_traction.at(*p)).collect();
             if let Some((p, v)) = points.iter().zip(&values).find(|(_, v)| !(v.is_finite() && **v >= 0.0)) {
@@ -839,4 +833,26 @@ fn centre(mesh: &Mesh, cell: usize) -> String {
     let nodes = mesh.cells[cell].nodes();
     let mean = |k: usize| nodes.iter().map(|&n| mesh.nodes[n][k]).sum::<f64>() / nodes.len() as f64;
     format!("({}, {})", shortest(mean(0)), shortest(mean(1)))
+}
+
+/// Whether `profile` gives a value at every one of a contact's `points`: a table must cover
+/// them (it does not extrapolate); where it does not, fails `key.at` and says where they lie.
+fn covers_contact(profile: &ProfileSpec, points: &[CurvePoint], key: &str, c: &mut Checker<'_>) -> bool {
+    let Some((along, from, to)) = profile.covers() else { return true };
+    let (low, high) =
+        points.iter().map(|p| along.of(*p)).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| (a.min(s), b.max(s)));
+    if from <= low && to >= high {
+        return true;
+    }
+    c.fail(
+        &format!("{key}.at"),
+        format!("[{}, …, {}]", shortest(from), shortest(to)),
+        format!(
+            "must cover the contact, whose Gauss points lie from {} to {} m in {}",
+            shortest(low),
+            shortest(high),
+            format!("{along:?}").to_lowercase()
+        ),
+    );
+    false
 }

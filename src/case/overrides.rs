@@ -12,7 +12,7 @@ pub fn apply(table: &mut toml::Table, item: &str) -> Result<(), CaseError> {
     let Some((key, raw)) = item.split_once('=') else {
         return Err(CaseError::Override(format!("--set {item}: expected KEY=VALUE, e.g. --set time.t_end=50")));
     };
-    let key = &dotted(key.trim());
+    let (typed, key) = (key.trim(), &dotted(key.trim()));
     let raw = raw.trim();
     if key.is_empty() || key.split('.').any(str::is_empty) {
         return Err(CaseError::Override(format!("--set {item}: the key must be a dotted path such as time.t_end")));
@@ -24,7 +24,7 @@ pub fn apply(table: &mut toml::Table, item: &str) -> Result<(), CaseError> {
     let parts: Vec<&str> = key.split('.').collect();
     let (last, parents) = parts.split_last().expect("non-empty key");
     let mut current = toml::Value::Table(std::mem::take(table));
-    let result = set(&mut current, parents, last, value, key);
+    let result = set(&mut current, parents, last, value, typed);
     if let toml::Value::Table(t) = current {
         *table = t;
     }

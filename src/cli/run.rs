@@ -220,7 +220,8 @@ impl Outputs {
     }
 
     /// Every file the run writes, with the option that names it: the recording, the MCAP
-    /// log, the event catalog and, for a block, the rupture catalog beside it.
+    /// log, the event catalog and, for a block, the rupture catalog beside it, and the opening
+    /// catalog where a contact's normal traction evolves.
     fn named<'a>(&'a self, args: &'a RunArgs, block: bool) -> Vec<Named<'a>> {
         let mut named: Vec<Named<'a>> = self.rrd.iter().map(|path| Named { role: "--rrd", path }).collect();
         named.extend(args.mcap.iter().map(|path| Named { role: "--mcap", path }));
