@@ -118,6 +118,9 @@ pub struct ContactInfo {
     /// [`Layout::surface_nodes`]).
     pub segments: usize,
     pub nodes: usize,
+    /// Whether its normal traction evolves, so that its segments can be open.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub evolving: bool,
 }
 
 impl Layout {
@@ -125,6 +128,23 @@ impl Layout {
     /// body, Pa per unit area of a point or spring block.
     pub fn force_unit(&self) -> &'static str {
         if self.axisymmetric { "N" } else { self.kind.force_unit() }
+    }
+
+    /// Whether segment `k` lies on a contact whose normal traction evolves (and so can be
+    /// open). A layout that does not say it per contact (one contact, or a file written before
+    /// the contacts said it) answers for the whole body.
+    pub fn segment_evolves(&self, k: usize) -> bool {
+        if !self.contacts.iter().any(|c| c.evolving) {
+            return self.evolving_normal;
+        }
+        let mut start = 0;
+        for contact in &self.contacts {
+            if k < start + contact.segments {
+                return contact.evolving;
+            }
+            start += contact.segments;
+        }
+        false
     }
 
     /// The contacts, with the segment and node ranges each holds: [`Self::contacts`], or one

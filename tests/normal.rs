@@ -821,3 +821,20 @@ fn a_cylinder_pressed_then_pushed_sideways_sticks_in_its_middle_as_cattaneo_mind
     assert!((c_measured - c_theory).abs() < h, "stick half-width {c_measured} m against {c_theory} m");
     assert!((0.5 * (left + right)).abs() < 0.1 * a, "the stick zone is centred at {} m", 0.5 * (left + right));
 }
+
+/// A body with a held and an evolving contact says per contact which segments can open: the
+/// double-shear sample (`cases/double_shear.toml`) with its right contact evolving. The layout
+/// goes into the recording and the MCAP log, and a replay marks a segment open only where it
+/// says its contact evolves, so a held contact's unpressed segment is never shown open.
+#[test]
+fn a_body_with_a_held_and_an_evolving_contact_says_which_can_open() {
+    let case = common::load("double_shear", &["scene.contacts[1].normal=\"evolving\""]);
+    let SceneSpec::Mesh(spec) = &case.scene else { panic!("a mesh case") };
+    let scene = slipfront::scene::mesh::scene(&case, spec).unwrap();
+    let layout = scene.layout();
+    let ranges = layout.contact_ranges();
+    assert_eq!(ranges.len(), 2, "two contacts");
+    assert!(layout.evolving_normal);
+    assert!(ranges[0].1.clone().all(|k| !layout.segment_evolves(k)), "the held left contact's segments");
+    assert!(ranges[1].1.clone().all(|k| layout.segment_evolves(k)), "the evolving right contact's segments");
+}

@@ -479,12 +479,17 @@ impl SceneSpec {
 
     /// Whether some contact's normal traction evolves (`normal = "evolving"`).
     pub fn has_evolving_normal(&self) -> bool {
+        self.evolving_contacts().into_iter().any(|e| e)
+    }
+
+    /// Whether each contact's normal traction evolves, in the order of the scene's contacts.
+    pub fn evolving_contacts(&self) -> Vec<bool> {
         let evolving = |n: &NormalBehaviour| *n == NormalBehaviour::Evolving;
         match self {
-            SceneSpec::Point(p) => evolving(&p.normal),
-            SceneSpec::SpringBlock(_) => false,
-            SceneSpec::Block(b) => evolving(&b.normal),
-            SceneSpec::Mesh(m) => m.contacts.iter().any(|c| evolving(&c.normal)),
+            SceneSpec::Point(p) => vec![evolving(&p.normal)],
+            SceneSpec::SpringBlock(_) => vec![false],
+            SceneSpec::Block(b) => vec![evolving(&b.normal)],
+            SceneSpec::Mesh(m) => m.contacts.iter().map(|c| evolving(&c.normal)).collect(),
         }
     }
 

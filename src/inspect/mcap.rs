@@ -229,8 +229,8 @@ fn assemble(header: &LogHeader, parts: BTreeMap<u32, Parts>) -> (Vec<Frame>, usi
                 slip_rate: at(&s.slip_rate, k),
                 slip: at(&s.slip, k),
                 // An evolving contact's segment is open where its mean normal traction is 0
-                // (it is 0 at every point then).
-                open: layout.evolving_normal && !s.traction_n.is_empty() && at(&s.traction_n, k) <= 0.0,
+                // (it is 0 at every point then); a held contact's never is.
+                open: layout.segment_evolves(k) && !s.traction_n.is_empty() && at(&s.traction_n, k) <= 0.0,
             })
             .collect();
         let mut surface_nodes = vec![[0.0; 2]; layout.surface_nodes.len()];

@@ -123,7 +123,8 @@ fn layout(case: &Case, contacts: &[Vec<Segment>], presentation: &Presentation) -
     let mut segments = Vec::new();
     let mut surface_nodes = Vec::new();
     let mut infos = Vec::new();
-    for (chain, name) in contacts.iter().zip(&presentation.contact_names) {
+    let evolving = case.scene.evolving_contacts();
+    for ((chain, name), &evolving) in contacts.iter().zip(&presentation.contact_names).zip(&evolving) {
         for s in chain {
             let name = name_of(&segment_probes, segments.len());
             segments.push(SegmentInfo { left: s.arc[0], right: s.arc[1], name });
@@ -134,7 +135,8 @@ fn layout(case: &Case, contacts: &[Vec<Segment>], presentation: &Presentation) -
             let name = name_of(&node_probes, surface_nodes.len());
             surface_nodes.push(NodeInfo { x, name });
         }
-        infos.push(ContactInfo { name: name.clone(), segments: chain.len(), nodes: surface_nodes.len() - count });
+        let nodes = surface_nodes.len() - count;
+        infos.push(ContactInfo { name: name.clone(), segments: chain.len(), nodes, evolving });
     }
     Layout {
         kind: presentation.kind,
