@@ -10,6 +10,9 @@ pub fn unit_of(key: &str) -> Option<&'static str> {
     if path.contains(&"normal_traction") || last == "normal_traction" {
         return Some(if last == "x" { "m" } else { "Pa" });
     }
+    if path.contains(&"gap") || last == "gap" {
+        return Some("m");
+    }
     Some(match last {
         "mu_s" | "mu_k" | "m" | "n" | "structure0" | "theta" | "energy_tolerance" | "accuracy" | "nx" | "ny"
         | "poisson_ratio" => "-",
@@ -21,7 +24,7 @@ pub fn unit_of(key: &str) -> Option<&'static str> {
         "width" | "height" => "m",
         "density" => "kg/m³",
         "mass" => "kg/m²",
-        "velocity" | "base_velocity" | "slip_rate_threshold" => "m/s",
+        "velocity" | "base_velocity" | "slip_rate_threshold" | "normal_velocity" => "m/s",
         "gravity" => "m/s²",
         _ => return None,
     })
@@ -45,7 +48,7 @@ mod tests {
     #[test]
     fn units_agree_with_the_case_reference() {
         let docs = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/cases.md")).unwrap();
-        let names = ["fixed", "group", "file", "integrator", "rstar_law", "kind", "axisymmetric"];
+        let names = ["fixed", "group", "file", "integrator", "rstar_law", "kind", "axisymmetric", "normal"];
         let (mut in_unit_table, mut checked) = (false, 0);
         for line in docs.lines() {
             let cells: Vec<&str> = line.trim().trim_matches('|').split(" | ").map(str::trim).collect();
