@@ -167,8 +167,16 @@ fn plot_xy(path: &Path, panels: &[Panel]) -> Result<(), String> {
                     .iter()
                     .flat_map(|c| c.points.iter().map(pick).filter(|v| v.is_finite()))
                     .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
-                let (lo, hi) =
-                    if lo.is_finite() && hi > lo { (lo, hi) } else { (lo.min(0.0) - 1.0, hi.max(0.0) + 1.0) };
+                // A span within a millionth of the values' size is rounding (a flat 1/R* of 1
+                // with dips of an ulp): the panel then shows a tenth of that size either side.
+                let size = lo.abs().max(hi.abs());
+                let (lo, hi) = if lo.is_finite() && hi - lo > 1e-6 * size {
+                    (lo, hi)
+                } else if lo.is_finite() && size > 0.0 {
+                    (0.5 * (lo + hi) - 0.1 * size, 0.5 * (lo + hi) + 0.1 * size)
+                } else {
+                    (lo.min(0.0) - 1.0, hi.max(0.0) + 1.0)
+                };
                 let pad = 0.05 * (hi - lo);
                 (lo - pad, hi + pad)
             };
