@@ -10,7 +10,7 @@ use crate::dynamics::memory::{IntegratorMemory, mismatch};
 use crate::dynamics::rate_form::memory::{Pair, RungeKutta};
 use crate::dynamics::rate_form::sdirk4::{FOURTH_ORDER, Sdirk4};
 use crate::dynamics::rate_form::trial::Trial;
-use crate::dynamics::rate_form::tsit5::{FIFTH_ORDER, Tsit5};
+use crate::dynamics::rate_form::tsit5::{FIFTH_ORDER, Tsit5, dense_weights};
 use crate::dynamics::system::System;
 
 /// The Runge–Kutta tableau that integrates the rate form.
@@ -139,10 +139,10 @@ fn attempts(
         let mut h = control.next.min(limit);
         // A failed implicit solve counts as an infinite error: the step shrinks.
         let failure = rk.trial(system, t, h, tolerance, &mut trial).err();
-        let mut error = if failure.is_none() { trial.error } else { f64::INFINITY };
+        let error = if failure.is_none() { trial.error } else { f64::INFINITY };
         let mut switching = None;
         if error <= tolerance {
-            // Eq. (9)'s first switch inside the step ends it: the trial past it is discarded.
+            // Eq. (9)'s first switch inside the step ends it there, on the trial's dense output.
             match rk.first_switch(system, t, h, &trial) {
                 Some(Switch::Now(point)) if !switched_now.contains(&point) => {
                     statistics.rejected += 1;
@@ -151,13 +151,9 @@ fn attempts(
                     continue;
                 }
                 Some(Switch::At(theta, point)) if theta * h > 0.0 && t + theta * h > t => {
-                    statistics.rejected += 1;
                     control.next = control.resize(h, error, scaling);
+                    rk.cut(system, (t, h, theta), point, &mut trial);
                     h *= theta;
-                    error = match rk.trial(system, t, h, tolerance, &mut trial) {
-                        Ok(()) => trial.error,
-                        Err(_) => f64::INFINITY,
-                    };
                     switching = Some((point, control.next));
                 }
                 _ => {}
@@ -201,12 +197,13 @@ fn attempts(
 }
 
 /// Makes `trial`, reached at `time`, the state; the vectors it replaces become a spare. With
-/// `switch`, that point's branch of eq. (6) changes there (the trial ended on its switch).
+/// `switch`, that point's branch of eq. (6) changes there (the trial ended on its switch, and
+/// its rate is already the new branch's: [`RungeKutta::cut`]).
 fn accept(system: &mut System, rk: &mut RungeKutta, time: f64, mut trial: Trial, switch: Option<usize>) {
     if let Some(point) = switch {
         rk.branches[point] = !rk.branches[point];
     }
-    if system.project(&mut trial.y) || switch.is_some() {
+    if system.project(&mut trial.y) {
         rk.evaluate(system, time, &trial.y, &mut trial.rate, &mut trial.lambda, &mut trial.numerator);
     }
     let n = system.body.dofs();
@@ -328,10 +325,10 @@ impl RungeKutta {
 
     /// The first point whose switching function (eq. 9) an accepted `trial` of `h` from `t`
     /// carries to the side of the other branch: where, by Illinois' regula falsi on the
-    /// switching function along the cubic Hermite interpolant of the step (from the states
-    /// and rates at its ends), and the fraction of the step just past it. `None` with no held
-    /// branches (SDIRK4) or no switch.
+    /// switching function along the step's fourth-order dense output, and the fraction of the
+    /// step just past it. `None` with no held branches (SDIRK4) or no switch.
     fn first_switch(&self, dynamics: &System, t: f64, h: f64, trial: &Trial) -> Option<Switch> {
+        let Pair::Tsit5(pair) = &self.pair else { return None };
         let against = |loading: bool, g: f64| if loading { g < 0.0 } else { g > 0.0 };
         let mut first: Option<(f64, usize)> = None;
         for (i, &loading) in self.branches.iter().enumerate() {
@@ -342,7 +339,7 @@ impl RungeKutta {
             if !g0.is_finite() || g0 == 0.0 || against(loading, g0) {
                 return Some(Switch::Now(i));
             }
-            let theta = self.locate_switch(dynamics, t, h, trial, i, (g0, g1));
+            let theta = self.locate_switch(dynamics, pair, t, h, i, (g0, g1));
             if first.is_none_or(|(earliest, _)| theta < earliest) {
                 first = Some((theta, i));
             }
@@ -350,16 +347,14 @@ impl RungeKutta {
         first.map(|(theta, i)| Switch::At(theta, i))
     }
 
-    /// The fraction of the step of `h` from `t` to `trial` just past point `i`'s switch, its
-    /// switching function being `ends` at the two ends.
-    fn locate_switch(&self, dynamics: &System, t: f64, h: f64, trial: &Trial, i: usize, ends: (f64, f64)) -> f64 {
+    /// The fraction of the step of `h` from `t` just past point `i`'s switch, along the dense
+    /// output of `pair`'s last step, its switching function being `ends` at the two ends.
+    fn locate_switch(&self, dynamics: &System, pair: &Tsit5, t: f64, h: f64, i: usize, ends: (f64, f64)) -> f64 {
         let n = dynamics.body.dofs();
         let m = self.branches.len();
-        let (y0, f0, y1, f1) = (&self.y, &self.rate, &trial.y, &trial.rate);
         let g = |theta: f64| {
-            let (s, s2, s3) = (theta, theta * theta, theta * theta * theta);
-            let (a, b, c, d) = (2.0 * s3 - 3.0 * s2 + 1.0, s3 - 2.0 * s2 + s, 3.0 * s2 - 2.0 * s3, s3 - s2);
-            let at = |j: usize| a * y0[j] + b * h * f0[j] + c * y1[j] + d * h * f1[j];
+            let weights = dense_weights(theta);
+            let at = |j: usize| pair.dense_component(j, self.y[j], h, &weights);
             dynamics.switching_at(i, t + theta * h, |dof| at(n + dof), at(2 * n + i), at(2 * n + m + i))
         };
         let ((mut lo, mut g_lo), (mut hi, mut g_hi)) = ((0.0, ends.0), (1.0, ends.1));
@@ -391,6 +386,18 @@ impl RungeKutta {
             }
         }
         hi
+    }
+
+    /// Ends Tsitouras' trial of `h` from `t` at the fraction `theta` of its step, just past
+    /// `point`'s switch of eq. (9): `trial` becomes the step's dense output there, with its
+    /// rate, `Λ` and switching functions on the branches that hold from there (`point`'s
+    /// changed; [`accept`] changes it for good). No step is taken again.
+    fn cut(&mut self, dynamics: &System, (t, h, theta): (f64, f64, f64), point: usize, trial: &mut Trial) {
+        let Pair::Tsit5(pair) = &mut self.pair else { return };
+        pair.dense_output(&self.y, h, theta, &mut trial.y);
+        self.branches[point] = !self.branches[point];
+        self.evaluate(dynamics, t + theta * h, &trial.y, &mut trial.rate, &mut trial.lambda, &mut trial.numerator);
+        self.branches[point] = !self.branches[point];
     }
 
     /// A trial's buffers: one handed back earlier, or new ones.

@@ -37,8 +37,9 @@
 //! value continuous, its slope not), and a step across one is rejected by its error estimate.
 //! Tsitouras' pair therefore holds each point on its branch of eq. (6) over a step
 //! ([`System::rate_form_on_branches`], each branch smooth) and ends the step where a point's
-//! switching function (the numerator `N` of eq. 5) changes sign, located along the step's cubic
-//! Hermite interpolant ([`driver`]); the point changes branch there.
+//! switching function (the numerator `N` of eq. 5) changes sign, located along the step's
+//! fourth-order dense output ([`tsit5::dense_weights`], [`driver`]), which is also the state
+//! there; the point changes branch there.
 //!
 //! Stick/slip transitions are located, not stepped over: when a step carries a contact point's
 //! plastic slip rate `Λ` across the event threshold, the step is shortened to end just past the
