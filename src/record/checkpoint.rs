@@ -23,7 +23,7 @@ use crate::run::RunMemory;
 /// The first bytes of every checkpoint.
 pub const MAGIC: &[u8; 8] = b"SLPFCKPT";
 /// The version of the envelope above and of the body's layout.
-pub const FORMAT: u32 = 3;
+pub const FORMAT: u32 = 4;
 /// The largest checkpoint read (bytes): a checkpoint holds one run's state, 10 MB for a
 /// 1000 × 100 mesh.
 pub const MAX_CHECKPOINT_BYTES: u64 = 4 << 30;

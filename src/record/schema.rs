@@ -499,24 +499,43 @@ pub struct Decimator {
     stick_every: u64,
     t_end: f64,
     last: Option<u64>,
+    /// Whether a segment slipped in the frame recorded last.
+    slipping: bool,
 }
+
+/// A [`Decimator`]'s memory, for a checkpoint: the step recorded last, and whether a segment
+/// slipped in it.
+pub type DecimatorMemory = (Option<u64>, bool);
 
 impl Decimator {
     pub fn new(plan: &RecordingPlan) -> Self {
-        Self { threshold: plan.slip_rate_threshold, stick_every: plan.spec.stick_every, t_end: plan.t_end, last: None }
+        Self {
+            threshold: plan.slip_rate_threshold,
+            stick_every: plan.spec.stick_every,
+            t_end: plan.t_end,
+            last: None,
+            slipping: false,
+        }
     }
 
     /// Whether `frame` is recorded (and, if so, remembers it): the first, every step while a
-    /// segment slips, in stick the first step of every `stick_every` (steps `k stick_every`
-    /// when none is skipped), and the frame at `t_end`. The stick steps are counted from step
-    /// 0, not from the last recorded: so the frame at `t_end` shifts none of them, and a run
-    /// extended past its end records the rows a longer run records.
+    /// segment slips and the step on which the last slip ends (so that every event's onset and
+    /// end lie on recorded rows or between the rows either side), in stick the first step of
+    /// every `stick_every` (steps `k stick_every` when none is skipped), and the frame at
+    /// `t_end`. The stick steps are counted from step 0, not from the last recorded: so the
+    /// frame at `t_end` shifts none of them, and a run extended past its end records the rows
+    /// a longer run records.
     pub fn keep(&mut self, frame: &Frame) -> bool {
         let keep = self.would_keep(frame);
         if keep {
             self.last = Some(frame.step);
+            self.slipping = self.slips(frame);
         }
         keep
+    }
+
+    fn slips(&self, frame: &Frame) -> bool {
+        frame.segments.iter().any(|s| s.slip_rate > self.threshold)
     }
 
     /// Whether [`Self::keep`] would record `frame`, remembering nothing. It reads the frame's
@@ -525,7 +544,8 @@ impl Decimator {
         match self.last {
             None => true,
             Some(last) => {
-                frame.segments.iter().any(|s| s.slip_rate > self.threshold)
+                self.slipping
+                    || self.slips(frame)
                     || frame.step / self.stick_every > last / self.stick_every
                     || frame.time >= self.t_end * (1.0 - 1e-12)
             }
@@ -536,17 +556,18 @@ impl Decimator {
     pub fn keep_last(&mut self, frame: &Frame) -> bool {
         let keep = self.last != Some(frame.step);
         self.last = Some(frame.step);
+        self.slipping = self.slips(frame);
         keep
     }
 
-    /// The step recorded last, for a checkpoint.
-    pub fn memory(&self) -> Option<u64> {
-        self.last
+    /// The step recorded last and whether it slipped, for a checkpoint.
+    pub fn memory(&self) -> DecimatorMemory {
+        (self.last, self.slipping)
     }
 
     /// Continues after the step recorded last.
-    pub fn resume(&mut self, last: Option<u64>) {
-        self.last = last;
+    pub fn resume(&mut self, (last, slipping): DecimatorMemory) {
+        (self.last, self.slipping) = (last, slipping);
     }
 }
 

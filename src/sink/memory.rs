@@ -4,6 +4,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use crate::record::schema::DecimatorMemory;
 use crate::sink::spacetime::SpaceTimeMemory;
 
 /// What a sink remembers across a checkpoint.
@@ -28,7 +29,7 @@ pub struct RecordingMemory {
     pub rows: u64,
     pub last_time: f64,
     pub digests: BTreeMap<String, String>,
-    pub decimator: Option<u64>,
+    pub decimator: DecimatorMemory,
     pub views: (Option<(u64, f64)>, Vec<bool>),
     pub slip_front: Option<Vec<bool>>,
     pub spacetime: Option<SpaceTimeMemory>,
@@ -44,5 +45,5 @@ pub struct LogMemory {
     pub digests: BTreeMap<String, String>,
     pub sequence: u32,
     pub last_time: f64,
-    pub decimator: Option<u64>,
+    pub decimator: DecimatorMemory,
 }
