@@ -75,7 +75,7 @@ const LISTED: &[(&str, &[(&str, How)])] = &[
             ("slipfront run cases/pile_pullout.toml", Run),
             ("slipfront figures recordings/pile_pullout.rrd --at 1,2,3,3.75,5,30", Run),
             ("slipfront run cases/fault_at_depth.toml", Run),
-            ("slipfront figures recordings/fault_at_depth.rrd --at 400,585,590,594,598,605", Run),
+            ("slipfront figures recordings/fault_at_depth.rrd --at 400,570,576,580,584,590", Run),
             ("slipfront study cases/studies/fault_ensemble.toml", Shortened("--shard 1/16")),
             (
                 "python3 scripts/fault_depth_bins.py recordings/fault_ensemble/events.csv",
