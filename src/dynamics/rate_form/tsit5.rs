@@ -118,6 +118,34 @@ fn weighted_sum(weights: &[f64], stages: &[Vec<f64>], sum: &mut [f64]) {
     }
 }
 
+/// The first `S` weights and the first `S` stages cut to `len` components.
+#[inline(always)]
+fn columns<'a, const S: usize>(weights: &[f64], stages: &'a [Vec<f64>], len: usize) -> ([f64; S], [&'a [f64]; S]) {
+    (std::array::from_fn(|s| weights[s]), std::array::from_fn(|s| &stages[s][..len]))
+}
+
+/// `Σ_s w_s k_s` at component `j`, added in the order of the stages from `+0` (as
+/// [`weighted_sum`] adds them).
+#[inline(always)]
+fn stage_sum<const S: usize>(w: &[f64; S], k: &[&[f64]; S], j: usize) -> f64 {
+    let mut sum = 0.0 + w[0] * k[0][j];
+    for s in 1..S {
+        sum += w[s] * k[s][j];
+    }
+    sum
+}
+
+/// `out = y + h Σ_s weights_s stages_s` over the first `S` stages: one pass over the
+/// components, each sum kept in a register ([`stage_sum`]).
+#[inline(always)]
+fn advance<const S: usize>((weights, stages, y, h): (&[f64], &[Vec<f64>], &[f64], f64), out: &mut [f64]) {
+    let len = out.len();
+    let (w, k) = columns::<S>(weights, stages, len);
+    for (j, (out, y)) in out.iter_mut().zip(&y[..len]).enumerate() {
+        *out = y + h * stage_sum(&w, &k, j);
+    }
+}
+
 /// The pair's error is per step and falls as `h⁵`: the next step is `0.9 h (tolerance/error)^{1/5}`,
 /// at most 5 times the last.
 pub(crate) const FIFTH_ORDER: ErrorScaling = ErrorScaling { per_unit_step: false, root: fifth_root, max_growth: 5.0 };
@@ -168,17 +196,22 @@ impl Tsit5 {
         self.stages[0].copy_from_slice(rate);
         for (i, row) in A.iter().enumerate() {
             let (known, next) = self.stages.split_at_mut(i + 1);
-            weighted_sum(&row[..=i], known, &mut self.sum);
-            for ((w, y), sum) in self.work.iter_mut().zip(y).zip(&self.sum) {
-                *w = y + h * sum;
+            let stage = (&row[..=i], &*known, y, h);
+            match i {
+                0 => advance::<1>(stage, &mut self.work),
+                1 => advance::<2>(stage, &mut self.work),
+                2 => advance::<3>(stage, &mut self.work),
+                3 => advance::<4>(stage, &mut self.work),
+                4 => advance::<5>(stage, &mut self.work),
+                _ => advance::<6>(stage, &mut self.work),
             }
             // The last row is b: the last stage is evaluated at y₅ itself.
             f(t + C[i] * h, &self.work, &mut next[0]);
         }
-        weighted_sum(&ERROR, &self.stages, &mut self.sum);
+        let (w, k) = columns::<7>(&ERROR, &self.stages, len);
         let mut error: f64 = 0.0;
         for j in 0..len {
-            let e = self.sum[j] * h;
+            let e = stage_sum(&w, &k, j) * h;
             let size = scale[j] + y[j].abs().max(self.work[j].abs());
             error = error.max((e / size).abs());
         }
