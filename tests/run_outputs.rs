@@ -1,6 +1,7 @@
 //! What a run says about its outputs: a rerun that replaces an earlier run's files says so, a
-//! rupture catalog only where the summary counts ruptures, and a negative friction-force drop in
-//! that catalog is a slow slip that the moving base kept loading.
+//! rupture catalog only where the summary counts ruptures, a negative friction-force drop in
+//! that catalog is a slow slip that the moving base kept loading, and the recording holds the
+//! step on which each slip ends.
 
 mod common;
 
@@ -119,4 +120,33 @@ fn interpolate(series: &slipfront::inspect::Series, t: f64) -> f64 {
     let i = series.times.partition_point(|&x| x <= t).clamp(1, series.times.len() - 1);
     let (t0, t1, v0, v1) = (series.times[i - 1], series.times[i], series.values[i - 1], series.values[i]);
     v0 + (v1 - v0) * (t - t0) / (t1 - t0)
+}
+
+#[test]
+fn every_slip_event_ends_between_two_consecutive_recorded_steps() {
+    // In stick the recording keeps one step in `record.stick_every` (50); every step while a
+    // segment slips; and the step on which the last slip ends. So each event's end, which the
+    // catalog places between the last step above the threshold and the first below it, lies
+    // between two rows of consecutive steps: the recording shows every slip stop where it stops.
+    let out = scratch("ends");
+    run("paper_triangular.toml", &[], &out);
+    let recording = rrd::read(&out.join("paper_triangular.rrd")).unwrap();
+    let rows = &recording.series["contact/friction_force"];
+    let csv = std::fs::read_to_string(out.join("paper_triangular.events.csv")).unwrap();
+    let ends: Vec<f64> = csv.lines().skip(1).map(|l| l.split(',').nth(2).unwrap().parse().unwrap()).collect();
+    assert!(ends.len() > 20, "the paper case has its slips: {}", ends.len());
+    let thinned = rows.steps.windows(2).filter(|w| w[1] - w[0] > 1).count();
+    assert!(thinned > 1000, "stick is thinned: {thinned} gaps");
+    // The recording's times are whole nanoseconds.
+    let ns = 1e-9;
+    for end in ends {
+        let after = rows.times.partition_point(|&t| t < end - ns);
+        assert!(after > 0 && after < rows.times.len(), "an end at {end} s outside the recording");
+        let (before_step, after_step) = (rows.steps[after - 1], rows.steps[after]);
+        assert_eq!(
+            after_step - before_step,
+            1,
+            "the end at {end} s lies between recorded steps {before_step} and {after_step}"
+        );
+    }
 }
