@@ -32,6 +32,27 @@ impl SeriesDigest {
         self.0.update(&row);
     }
 
+    /// Adds the rows `(steps[i], nanos[i], values(i))` in one update of the hash, the same
+    /// digest as [`SeriesDigest::add`] row by row at a fraction of its calls. `row_bytes` is a
+    /// buffer of `24 × rows` bytes whose steps and times [`SeriesDigest::rows_template`] wrote;
+    /// only the values are written here.
+    pub fn add_rows(&mut self, row_bytes: &mut [u8], values: impl Iterator<Item = f64>) {
+        for (row, value) in row_bytes.chunks_exact_mut(24).zip(values) {
+            row[16..].copy_from_slice(&value.to_bits().to_le_bytes());
+        }
+        self.0.update(row_bytes);
+    }
+
+    /// The rows' steps and times as [`SeriesDigest::add`] hashes them, with room for values.
+    pub fn rows_template(steps: &[i64], seconds: &[f64], row_bytes: &mut Vec<u8>) {
+        row_bytes.clear();
+        for (step, time) in steps.iter().zip(seconds) {
+            row_bytes.extend_from_slice(&step.to_le_bytes());
+            row_bytes.extend_from_slice(&nanos(*time).to_le_bytes());
+            row_bytes.extend_from_slice(&[0; 8]);
+        }
+    }
+
     /// The digest of the rows added so far, as 8 hexadecimal digits.
     pub fn hex(&self) -> String {
         format!("{:08x}", self.0.digest())
@@ -99,6 +120,14 @@ mod tests {
         assert_ne!(SeriesDigest::of(&[0, 1, 3], &times, &values), whole, "a step");
         assert_ne!(SeriesDigest::of(&steps, &[0.0, 0.01, 0.020000001], &values), whole, "a time");
         assert_ne!(SeriesDigest::of(&steps[..2], &times[..2], &values[..2]), whole, "a row less");
+        // Rows added in bulk give the digest of rows added one by one.
+        let mut bulk = SeriesDigest::default();
+        let mut template = Vec::new();
+        SeriesDigest::rows_template(&steps[..1], &times[..1], &mut template);
+        bulk.add_rows(&mut template, values[..1].iter().copied());
+        SeriesDigest::rows_template(&steps[1..], &times[1..], &mut template);
+        bulk.add_rows(&mut template, values[1..].iter().copied());
+        assert_eq!(bulk.hex(), whole);
         // Times as read back (whole nanoseconds over 1e9) give the same digest.
         let read: Vec<f64> = times.iter().map(|t| nanos(*t) as f64 / 1e9).collect();
         assert_eq!(SeriesDigest::of(&steps, &read, &values), whole);

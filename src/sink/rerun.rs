@@ -187,10 +187,11 @@ impl RerunSink {
                 TimeColumn::new_duration_secs(schema::SIM_TIME, std::mem::take(times)),
             ]
         };
-        let times = columns(&mut self.steps, &mut self.times);
         let view_times = columns(&mut self.view_steps, &mut self.view_times);
         let rec = self.rec.as_ref().expect("the stream lives until finish");
-        self.series.send(rec, &times).map_err(rerun_error)?;
+        self.series.send(rec, &self.steps, &self.times).map_err(rerun_error)?;
+        self.steps.clear();
+        self.times.clear();
         if let Some(front) = &mut self.slip_front {
             front.send(rec, &view_times).map_err(rerun_error)?;
         }

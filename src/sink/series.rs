@@ -10,7 +10,7 @@ use rerun::{RecordingStream, Scalars, SeriesLines, TimeColumn};
 use crate::frame::Frame;
 use crate::record::colormap::{POSITION, sample};
 use crate::record::digest::SeriesDigest;
-use crate::record::schema::{EntitySpec, Source};
+use crate::record::schema::{self, EntitySpec, Source};
 
 /// One entity's buffered rows.
 struct Columns {
@@ -28,6 +28,8 @@ struct Columns {
 pub struct SeriesColumns {
     entities: Vec<Columns>,
     rows: usize,
+    /// The buffered rows' steps and times as the digests hash them ([`SeriesDigest::add_rows`]).
+    row_bytes: Vec<u8>,
 }
 
 impl SeriesColumns {
@@ -60,26 +62,38 @@ impl SeriesColumns {
     /// Appends `frame`'s values to every entity.
     pub fn push(&mut self, frame: &Frame) {
         for entity in &mut self.entities {
-            for (source, digest) in entity.sources.iter().zip(&mut entity.digests) {
-                let value = source.of(frame);
-                entity.values.push(value);
-                digest.add(frame.step as i64, frame.time, value);
-            }
+            entity.values.extend(entity.sources.iter().map(|source| source.of(frame)));
         }
         self.rows += 1;
     }
 
-    /// Sends the buffered rows, one chunk per entity, on the given time columns.
-    pub fn send(&mut self, rec: &RecordingStream, times: &[TimeColumn; 2]) -> Result<(), String> {
+    /// Continues every series' digest over the buffered rows, whose steps and seconds are given.
+    fn digest(&mut self, steps: &[i64], seconds: &[f64]) {
+        SeriesDigest::rows_template(steps, seconds, &mut self.row_bytes);
+        for entity in &mut self.entities {
+            let width = entity.sources.len();
+            for (i, digest) in entity.digests.iter_mut().enumerate() {
+                digest.add_rows(&mut self.row_bytes, entity.values.iter().skip(i).step_by(width).copied());
+            }
+        }
+    }
+
+    /// Sends the buffered rows, one chunk per entity, on the time columns of their `steps` and
+    /// `seconds`, and continues the series' digests over them.
+    pub fn send(&mut self, rec: &RecordingStream, steps: &[i64], seconds: &[f64]) -> Result<(), String> {
         let rows = std::mem::take(&mut self.rows);
         if rows == 0 {
             return Ok(());
         }
+        self.digest(steps, seconds);
+        let times = [
+            TimeColumn::new_sequence(schema::STEP, steps.to_vec()),
+            TimeColumn::new_duration_secs(schema::SIM_TIME, seconds.to_vec()),
+        ];
         for entity in &mut self.entities {
             let width = entity.sources.len();
-            let column = Scalars::new(std::mem::take(&mut entity.values))
-                .columns(std::iter::repeat_n(width, rows))
-                .map_err(|e| e.to_string())?;
+            let values = std::mem::replace(&mut entity.values, Vec::with_capacity(width * rows));
+            let column = Scalars::new(values).columns(std::iter::repeat_n(width, rows)).map_err(|e| e.to_string())?;
             rec.send_columns(entity.path.as_str(), times.clone(), column).map_err(|e| e.to_string())?;
         }
         Ok(())
