@@ -12,6 +12,7 @@ use crate::case::profile::ProfileSpec;
 use crate::dynamics::{MainBody, Motion, NormalBehaviour};
 use crate::fem::curve::{CurvePoint, segments};
 use crate::fem::equilibrium::{Equilibrium, under_gravity};
+use crate::fem::stiffest::{EdgeSpring, cell_frequency};
 use crate::fem::{
     BodyDefinition, Constraint, ContactDefinition, Material, Members, Mesh, PlaneStrain, Traction, TractionLoad,
 };
@@ -691,6 +692,49 @@ impl MeshSpec {
     /// Degrees of freedom of the mesh's nodes (before any is fixed); `None` before loading.
     pub fn unknowns(&self) -> Option<usize> {
         self.loaded.as_ref().map(|l| 2 * l.mesh.nodes.len())
+    }
+
+    /// An upper bound on the highest angular frequency of the body with its contacts' elastic
+    /// springs (rad/s; [`crate::fem::stiffest`]): `α_t` along every contact segment and `α_n`
+    /// across it (held or evolving, the normal springs are in the operator). `None` before the
+    /// mesh is loaded, and for an
+    /// axisymmetric body (its cells' hoop stiffness is not bounded here).
+    pub fn stiffest_frequency(&self) -> Option<f64> {
+        let loaded = self.loaded.as_ref()?;
+        if self.axisymmetric {
+            return None;
+        }
+        let mesh = &loaded.mesh;
+        let position = |node: usize| nalgebra::Vector2::new(mesh.nodes[node][0], mesh.nodes[node][1]);
+        // Each edge's cell and its corners' places in the cell.
+        let mut edges = std::collections::HashMap::new();
+        for (c, cell) in mesh.cells.iter().enumerate() {
+            let nodes = cell.nodes();
+            for i in 0..nodes.len() {
+                let j = (i + 1) % nodes.len();
+                edges.insert((nodes[i].min(nodes[j]), nodes[i].max(nodes[j])), (c, i, j));
+            }
+        }
+        let mut springs = vec![Vec::new(); mesh.cells.len()];
+        for (chain, params) in loaded.contact_chains.iter().zip(&loaded.contact_params) {
+            for pair in chain.windows(2) {
+                let (a, b) = (pair[0], pair[1]);
+                let Some(&(c, i, j)) = edges.get(&(a.min(b), a.max(b))) else { continue };
+                let nodes = if mesh.cells[c].nodes()[i] == a { [i, j] } else { [j, i] };
+                let tangent = (position(b) - position(a)).normalize();
+                let normal = nalgebra::Vector2::new(-tangent.y, tangent.x);
+                springs[c].push(EdgeSpring { nodes, direction: tangent, modulus: params.alpha_t });
+                springs[c].push(EdgeSpring { nodes, direction: normal, modulus: params.alpha_n });
+            }
+        }
+        let frequency = |c: usize| {
+            let material = &self.materials[loaded.cell_material[c]];
+            let elasticity =
+                PlaneStrain { youngs_modulus: material.youngs_modulus, poisson_ratio: material.poisson_ratio };
+            let coords: Vec<_> = mesh.cells[c].nodes().iter().map(|&n| position(n)).collect();
+            cell_frequency(&coords, &elasticity, material.density, &springs[c])
+        };
+        Some((0..mesh.cells.len()).map(frequency).fold(0.0, f64::max))
     }
 
     /// Segments and nodes of the contacts, together.

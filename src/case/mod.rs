@@ -192,9 +192,12 @@ impl Case {
     pub fn problem(&self) -> Problem {
         let p = &self.friction;
         let healing = p.rstar_scale() * p.xi * p.n.max(1.0) * p.kinetic_static_ratio() * self.time.dt;
+        let stiffness = self.scene.stiffest_frequency(p).map(|omega| omega * self.time.dt);
         match self.scene.unknowns() {
             None => Problem::Point,
-            Some(unknowns) => Problem::Body { unknowns, healing, evolving: self.scene.has_evolving_normal() },
+            Some(unknowns) => {
+                Problem::Body { unknowns, healing, stiffness, evolving: self.scene.has_evolving_normal() }
+            }
         }
     }
 

@@ -6,6 +6,8 @@ use crate::case::mesh::MeshSpec;
 use crate::case::profile;
 use crate::dynamics::NormalBehaviour;
 use crate::dynamics::method::{ACCURACY_RANGE, Choice, MAX_STEPS, Method};
+use crate::fem::PlaneStrain;
+use crate::fem::stiffest::{EdgeSpring, cell_frequency};
 use crate::frame::Quantity;
 use crate::friction::FrictionParams;
 use crate::validate::Checker;
@@ -423,6 +425,31 @@ impl SceneSpec {
                 Some(b.nx.saturating_add(1).saturating_mul(b.ny.saturating_add(1)).saturating_mul(2))
             }
             SceneSpec::Mesh(m) => Some(m.unknowns().unwrap_or(0)),
+        }
+    }
+
+    /// An upper bound on the highest angular frequency of the body with its contact's elastic
+    /// springs `α_t` and `α_n` (rad/s; [`crate::fem::stiffest`]), for a block or a mesh; `None` for the other
+    /// scenes, and for an axisymmetric mesh.
+    pub fn stiffest_frequency(&self, friction: &FrictionParams) -> Option<f64> {
+        match self {
+            SceneSpec::Point(_) | SceneSpec::SpringBlock(_) => None,
+            SceneSpec::Block(b) => {
+                use nalgebra::Vector2;
+                let (hx, hy) = (b.width / b.nx as f64, b.height / b.ny as f64);
+                let coords =
+                    [Vector2::new(0.0, 0.0), Vector2::new(hx, 0.0), Vector2::new(hx, hy), Vector2::new(0.0, hy)];
+                let elasticity = PlaneStrain { youngs_modulus: b.youngs_modulus, poisson_ratio: b.poisson_ratio };
+                // The contact runs along the bottom edge of the bottom row of cells.
+                let spring = |direction, modulus| EdgeSpring { nodes: [0, 1], direction, modulus };
+                let springs = [
+                    spring(Vector2::new(1.0, 0.0), friction.alpha_t),
+                    spring(Vector2::new(0.0, 1.0), friction.alpha_n),
+                ];
+                let inside = cell_frequency(&coords, &elasticity, b.density, &[]);
+                Some(inside.max(cell_frequency(&coords, &elasticity, b.density, &springs)))
+            }
+            SceneSpec::Mesh(m) => m.stiffest_frequency(),
         }
     }
 

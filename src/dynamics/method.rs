@@ -66,10 +66,21 @@ pub enum Problem {
     Point,
     /// A body of `unknowns` (a rigid block has one), whose healing relaxes `1/R*` at the rate
     /// `γ ξ n μ_k/μ_s` (1/s; eq. 4 linearized, `n` at least 1): `healing` is that rate times
-    /// `dt`, the number of healing times in a step; `evolving`: some contact's normal traction
-    /// evolves.
-    Body { unknowns: usize, healing: f64, evolving: bool },
+    /// `dt`, the number of healing times in a step; `stiffness`: an upper bound on the highest
+    /// angular frequency of the body on its contact's elastic springs times `dt`, the radians
+    /// its stiffest mode turns in a step ([`crate::fem::stiffest`]; `None` where not bounded);
+    /// `evolving`: some contact's normal traction evolves.
+    Body { unknowns: usize, healing: f64, stiffness: Option<f64>, evolving: bool },
 }
+
+/// The most radians the stiffest mode of a small body may turn in a step of `dt` for `auto` to
+/// give it Tsitouras' pair, which is explicit: its stability holds its steps to about
+/// `0.76/ω_max` ([`bounded_growth`]), where Wilson's implicit step takes `dt`. Measured on the
+/// paper's block with `α_t` raised (300 s, CPU, 2026-11-26): at 1.4 radians per step the pair
+/// takes a third of Wilson's time, at 3.2 the same, at 4.5 1.4 times it, at 14 five times; an
+/// evolving contact with `α_n = 1e12` (447 radians) 51 s against Wilson's 0.24 s for 100 s.
+/// Up to 6 the pair's far smaller onset errors are worth its time.
+pub const AUTO_PAIR_STIFFNESS: f64 = 6.0;
 
 /// The most unknowns of a body that `auto` gives to Tsitouras' pair; larger bodies get central
 /// differences. On the paper's 10 × 1 mesh (44 unknowns) the pair runs 1000 s in half the time of
@@ -97,6 +108,20 @@ pub fn choose(problem: Problem) -> (Method, String) {
                 crate::validate::shortest(healing)
             ),
         ),
+        Problem::Body { unknowns, stiffness: Some(turn), .. }
+            if unknowns <= AUTO_PAIR_UNKNOWNS && turn > AUTO_PAIR_STIFFNESS =>
+        {
+            (
+                Method::Wilson,
+                format!(
+                    "a body of {unknowns} unknown{} whose stiffest mode, on the contact's elastic springs, turns up to \
+                     {} radians in a step of time.dt (more than {AUTO_PAIR_STIFFNESS}): Tsitouras' explicit pair would be \
+                     held by its stability to steps of under one radian of it, where Wilson's implicit step takes time.dt",
+                    if unknowns == 1 { "" } else { "s" },
+                    if turn >= 10.0 { format!("{turn:.0}") } else { format!("{turn:.1}") }
+                ),
+            )
+        }
         Problem::Body { unknowns, .. } if unknowns <= AUTO_PAIR_UNKNOWNS => (
             Method::Tsit5,
             format!(

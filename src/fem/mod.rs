@@ -9,6 +9,7 @@ pub mod element;
 pub mod equilibrium;
 pub mod gmsh;
 pub mod rectangle;
+pub mod stiffest;
 
 pub use assembly::{
     Assembled, AssemblyError, BodyDefinition, Constraint, ContactDefinition, Dofs, Material, NodeDof, Traction,
