@@ -12,7 +12,7 @@ use crate::case::profile::ProfileSpec;
 use crate::dynamics::{MainBody, Motion, NormalBehaviour};
 use crate::fem::curve::{CurvePoint, segments};
 use crate::fem::equilibrium::{Equilibrium, under_gravity};
-use crate::fem::stiffest::{EdgeSpring, cell_frequency};
+use crate::fem::stiffest::{EdgeSpring, cell_frequency, largest};
 use crate::fem::{
     BodyDefinition, Constraint, ContactDefinition, Material, Members, Mesh, PlaneStrain, Traction, TractionLoad,
 };
@@ -734,7 +734,7 @@ impl MeshSpec {
             let coords: Vec<_> = mesh.cells[c].nodes().iter().map(|&n| position(n)).collect();
             cell_frequency(&coords, &elasticity, material.density, &springs[c])
         };
-        Some((0..mesh.cells.len()).map(frequency).fold(0.0, f64::max))
+        Some(largest((0..mesh.cells.len()).map(frequency)))
     }
 
     /// Segments and nodes of the contacts, together.

@@ -18,7 +18,7 @@ pub use spec::*;
 
 pub use crate::case::error::CaseError;
 use crate::dynamics::Stepping;
-use crate::dynamics::method::{Choice, MAX_STEPS, Problem, choose};
+use crate::dynamics::method::{AUTO_PAIR_UNKNOWNS, Choice, MAX_STEPS, Problem, choose};
 use crate::validate::{Checker, Violation, shortest};
 
 /// Reads, overrides, parses and validates a case file.
@@ -192,10 +192,15 @@ impl Case {
     pub fn problem(&self) -> Problem {
         let p = &self.friction;
         let healing = p.rstar_scale() * p.xi * p.n.max(1.0) * p.kinetic_static_ratio() * self.time.dt;
-        let stiffness = self.scene.stiffest_frequency(p).map(|omega| omega * self.time.dt);
         match self.scene.unknowns() {
             None => Problem::Point,
             Some(unknowns) => {
+                // Only a body small enough for the pair is bounded: a cell at a time, cheap there.
+                let stiffness = (unknowns <= AUTO_PAIR_UNKNOWNS)
+                    .then(|| self.scene.stiffest_frequency(p))
+                    .flatten()
+                    .map(|omega| omega * self.time.dt)
+                    .filter(|turn| turn.is_finite());
                 Problem::Body { unknowns, healing, stiffness, evolving: self.scene.has_evolving_normal() }
             }
         }

@@ -7,7 +7,7 @@ use crate::case::profile;
 use crate::dynamics::NormalBehaviour;
 use crate::dynamics::method::{ACCURACY_RANGE, Choice, MAX_STEPS, Method};
 use crate::fem::PlaneStrain;
-use crate::fem::stiffest::{EdgeSpring, cell_frequency};
+use crate::fem::stiffest::{EdgeSpring, cell_frequency, largest};
 use crate::frame::Quantity;
 use crate::friction::FrictionParams;
 use crate::validate::Checker;
@@ -447,7 +447,7 @@ impl SceneSpec {
                     spring(Vector2::new(0.0, 1.0), friction.alpha_n),
                 ];
                 let inside = cell_frequency(&coords, &elasticity, b.density, &[]);
-                Some(inside.max(cell_frequency(&coords, &elasticity, b.density, &springs)))
+                Some(largest([inside, cell_frequency(&coords, &elasticity, b.density, &springs)]))
             }
             SceneSpec::Mesh(m) => m.stiffest_frequency(),
         }

@@ -24,7 +24,20 @@ pub struct EdgeSpring {
 
 /// `√λ_max` of one cell (rad/s): corners `coords` counter-clockwise (three or four), of
 /// `material` and `density`, with `springs` along its edges.
+/// `NaN` for a cell this bound cannot read: not convex and counter-clockwise, or a material,
+/// density or spring that is not finite and positive (a case refused later for it).
 pub fn cell_frequency(coords: &[Vector2<f64>], material: &PlaneStrain, density: f64, springs: &[EdgeSpring]) -> f64 {
+    let positive = |x: f64| x.is_finite() && x > 0.0;
+    let readable = convex(coords)
+        && positive(material.youngs_modulus)
+        && (0.0..0.5).contains(&material.poisson_ratio)
+        && positive(density)
+        && springs
+            .iter()
+            .all(|s| s.modulus.is_finite() && s.modulus >= 0.0 && s.nodes.iter().all(|&n| n < coords.len()));
+    if !readable {
+        return f64::NAN;
+    }
     let (mut k, masses) = match coords {
         [a, b, c] => {
             let area = 0.5 * signed_double_area(coords);
@@ -57,6 +70,23 @@ pub fn cell_frequency(coords: &[Vector2<f64>], material: &PlaneStrain, density: 
     scaled.symmetric_eigenvalues().iter().copied().fold(0.0, f64::max).sqrt()
 }
 
+/// The largest of the cells' frequencies: the bound, or `NaN` if one cell could not be read.
+pub fn largest(frequencies: impl IntoIterator<Item = f64>) -> f64 {
+    frequencies.into_iter().fold(0.0, |a: f64, b| if a.is_nan() || b.is_nan() { f64::NAN } else { a.max(b) })
+}
+
+/// Whether every turn along `coords` is to the left: a strictly convex, counter-clockwise cell
+/// of three or four finite corners.
+fn convex(coords: &[Vector2<f64>]) -> bool {
+    let n = coords.len();
+    (3..=4).contains(&n)
+        && coords.iter().all(|c| c.x.is_finite() && c.y.is_finite())
+        && (0..n).all(|a| {
+            let (p, q, r) = (coords[a], coords[(a + 1) % n], coords[(a + 2) % n]);
+            (q - p).perp(&(r - q)) > 0.0
+        })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -72,5 +102,16 @@ mod tests {
         let omega = cell_frequency(&coords, &material, 1000.0, &[spring]);
         let expected = (1e6 * h * 3.0 / 6.0 / (1000.0 * h * h / 4.0)).sqrt();
         assert!((omega / expected - 1.0).abs() < 1e-9, "{omega} against {expected}");
+    }
+
+    #[test]
+    fn a_cell_it_cannot_read_gives_nan_not_a_panic() {
+        let square = [Vector2::new(0.0, 0.0), Vector2::new(1.0, 0.0), Vector2::new(1.0, 1.0), Vector2::new(0.0, 1.0)];
+        let flat = [Vector2::new(0.0, 0.0), Vector2::new(0.0, 0.0), Vector2::new(0.0, 1.0), Vector2::new(0.0, 1.0)];
+        let material = PlaneStrain { youngs_modulus: 1e3, poisson_ratio: 0.0 };
+        assert!(cell_frequency(&flat, &material, 1000.0, &[]).is_nan());
+        assert!(cell_frequency(&square, &material, 0.0, &[]).is_nan());
+        assert!(cell_frequency(&square, &PlaneStrain { youngs_modulus: -1.0, poisson_ratio: 0.0 }, 1.0, &[]).is_nan());
+        assert!(cell_frequency(&square, &material, 1000.0, &[]).is_finite());
     }
 }
