@@ -39,6 +39,7 @@ use crate::dynamics::memory::{CentralMemory, IntegratorMemory, check_points, mis
 use crate::dynamics::state::State;
 use crate::dynamics::system::System;
 use crate::friction::{ContactState, FrictionError, FrictionParams, Restart, Update, update_with};
+use crate::linalg::lanczos::largest_eigenvalue;
 use crate::linalg::stencil::TemplateMatrix;
 
 /// Share of the stability limit `2/ω_max` that the sub-steps use: it covers Lanczos'
@@ -122,53 +123,22 @@ impl CentralDifference {
 
 /// The highest angular frequency `ω_max` (rad/s) of `M⁻¹ (K + K_t)`, `K_t = α_t Σ w Ñᵀ Ñ` the
 /// contact's elastic tangential springs: the square root of the largest eigenvalue of the
-/// symmetric `M^{-½} (K + K_t) M^{-½}`, by [`LANCZOS_STEPS`] steps of Lanczos' iteration (Golub
-/// & Van Loan, *Matrix Computations*, 4th ed., Alg. 10.1.1, without reorthogonalization, which
-/// leaves the extreme Ritz value intact). The largest Ritz value approaches the largest
-/// eigenvalue from below; `tests/central_difference.rs` compares it with a dense eigensolver.
+/// symmetric `M^{-½} (K + K_t) M^{-½}`, by [`LANCZOS_STEPS`] steps of Lanczos' iteration
+/// ([`largest_eigenvalue`]). The largest Ritz value approaches the largest eigenvalue from
+/// below; `tests/central_difference.rs` compares it with a dense eigensolver.
 pub fn highest_frequency(body: &LinearBody, contact: &ContactBoundary) -> f64 {
     let n = body.dofs();
     let scale: Vec<f64> = body.mass.iter().map(|m| 1.0 / m.sqrt()).collect();
     let mut scaled = vec![0.0; n];
-    let apply = |x: &[f64], y: &mut [f64], scaled: &mut Vec<f64>| {
+    let apply = |x: &[f64], y: &mut [f64]| {
         scaled.iter_mut().zip(x.iter().zip(&scale)).for_each(|(s, (x, c))| *s = x * c);
-        body.stiffness.mul_vec(scaled, y);
+        body.stiffness.mul_vec(&scaled, y);
         for (k, point) in contact.points.iter().enumerate() {
-            point.scatter(contact.params(k).alpha_t * point.weight * point.interpolate(scaled), y);
+            point.scatter(contact.params(k).alpha_t * point.weight * point.interpolate(&scaled), y);
         }
         y.iter_mut().zip(&scale).for_each(|(y, c)| *y *= c);
     };
-    let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(a, b)| a * b).sum::<f64>();
-    // A start with a component along every mode: an irrational sequence of both signs.
-    let mut q: Vec<f64> = (0..n).map(|i| ((i as f64 + 1.0) * 0.618_033_988_749_894_9).fract() - 0.5).collect();
-    let norm = dot(&q, &q).sqrt();
-    q.iter_mut().for_each(|v| *v /= norm);
-    let mut previous = vec![0.0; n];
-    let mut w = vec![0.0; n];
-    let (mut alphas, mut betas) = (Vec::new(), Vec::new());
-    let mut beta = 0.0;
-    for _ in 0..LANCZOS_STEPS.min(n) {
-        apply(&q, &mut w, &mut scaled);
-        w.iter_mut().zip(&previous).for_each(|(w, p)| *w -= beta * p);
-        let alpha = dot(&w, &q);
-        w.iter_mut().zip(&q).for_each(|(w, q)| *w -= alpha * q);
-        alphas.push(alpha);
-        beta = dot(&w, &w).sqrt();
-        if beta <= 1e-14 * alpha.abs() {
-            break;
-        }
-        betas.push(beta);
-        std::mem::swap(&mut previous, &mut q);
-        q.iter_mut().zip(&w).for_each(|(q, w)| *q = w / beta);
-    }
-    let k = alphas.len();
-    let tridiagonal = nalgebra::DMatrix::from_fn(k, k, |i, j| match i.abs_diff(j) {
-        0 => alphas[i],
-        1 => betas[i.min(j)],
-        _ => 0.0,
-    });
-    let largest = tridiagonal.symmetric_eigenvalues().iter().copied().fold(0.0, f64::max);
-    largest.sqrt()
+    largest_eigenvalue(n, LANCZOS_STEPS, apply).sqrt()
 }
 
 impl CentralDifference {

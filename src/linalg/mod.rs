@@ -1,6 +1,7 @@
 //! Linear algebra below the finite elements and the integrators: the sparse symmetric
-//! matrix with its Cholesky (LU as fallback) factorization, and the stencil form of the
-//! stiffness that the explicit step multiplies with.
+//! matrix with its Cholesky (LU as fallback) factorization, the stencil form of the stiffness
+//! that the explicit step multiplies with, and Lanczos' iteration for extreme frequencies.
 
+pub mod lanczos;
 pub mod sparse;
 pub mod stencil;
