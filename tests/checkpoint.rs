@@ -195,6 +195,11 @@ fn sdirk4_resumed_from_the_middle_takes_the_same_adaptive_steps() {
 }
 
 #[test]
+fn cycle_steps_resumed_from_the_middle_take_the_same_steps() {
+    resumed_from_the_middle("cycle");
+}
+
+#[test]
 fn a_run_killed_with_sigkill_resumes_to_the_uninterrupted_catalogs() {
     let (whole, killed) = (scratch("kill-whole"), scratch("kill-killed"));
     let common = ["--set", "time.integrator=wilson", "--set", "time.t_end=600"];
@@ -276,7 +281,7 @@ fn extended_as_the_longer_run(tag: &str, sets: &[&str], t: f64, every: f64) {
 fn a_finished_run_extended_ends_as_the_longer_run_with_every_integrator() {
     // To 450 s (the first rupture, 420 to 430 s, inside the first run) and on to 900 s, where
     // the chaos after the first slips makes any difference in a step visible in the events.
-    for method in ["wilson", "central", "tsit5", "sdirk4"] {
+    for method in ["wilson", "central", "tsit5", "sdirk4", "cycle"] {
         extended_as_the_longer_run(method, &[&format!("time.integrator={method}")], 450.0, 200.0);
     }
     // Wilson's adaptive steps (step doubling) are slow through the slips: to 250 and 500 s.

@@ -99,6 +99,16 @@ fn time_rules() {
     expect_invalid(&c, &["time.accuracy=nan"], "time.accuracy = NaN must be a finite number");
     expect_invalid(
         &c,
+        &["time.integrator=cycle", "time.accuracy=1e-6"],
+        "time.accuracy = 0.000001 does not apply to time.integrator = \"cycle\"",
+    );
+    expect_invalid(
+        &c,
+        &["time.integrator=cycle", "time.tolerance=0.5"],
+        "time.tolerance = 0.5 must lie in (0, 0.1] (the largest change of a contact point's traction",
+    );
+    expect_invalid(
+        &c,
         &["time.integrator=wilson", "time.accuracy=1e-9", "time.t_end=1e6"],
         "time.accuracy = 1e-9 asks wilson for steps of 0.000025 s: 4.000e10 steps for t_end = 1000000 s, more than \
          the 1e9 allowed",
@@ -122,7 +132,7 @@ fn time_rules() {
     expect_invalid(
         &c,
         &["time.integrator=rk4"],
-        "time.integrator: unknown variant `rk4`, expected one of `auto`, `wilson`, `tsit5`, `sdirk4`, `central`",
+        "time.integrator: unknown variant `rk4`, expected one of `auto`, `wilson`, `tsit5`, `sdirk4`, `central`, `cycle`",
     );
     expect_invalid(
         &c,

@@ -150,3 +150,34 @@ fn every_slip_event_ends_between_two_consecutive_recorded_steps() {
         );
     }
 }
+
+#[test]
+fn slip_every_thins_the_slips_and_keeps_every_change_between_stick_and_slip() {
+    // The paper case to 450 s (its first rupture, 420 to 430 s) recorded at every slipping
+    // step and at every 10th: the catalogs are the same (computed from every step), the thinned
+    // rows are rows of the full recording, far fewer through the rupture, and the step where
+    // the contact goes from stick to slip is still the first row after the first onset.
+    let (all, thin) = (scratch("slip-all"), scratch("slip-thin"));
+    run("paper_triangular.toml", &["time.t_end=450"], &all);
+    run("paper_triangular.toml", &["time.t_end=450", "record.slip_every=10"], &thin);
+    let read = |dir: &Path, name: &str| std::fs::read(dir.join(name)).unwrap();
+    for name in ["paper_triangular.events.csv", "paper_triangular.ruptures.csv"] {
+        assert!(read(&all, name) == read(&thin, name), "{name} differs");
+    }
+    let series =
+        |dir: &Path| rrd::read(&dir.join("paper_triangular.rrd")).unwrap().series["contact/friction_force"].clone();
+    let (full, thinned) = (series(&all), series(&thin));
+    for (k, step) in thinned.steps.iter().enumerate() {
+        let at = full.steps.binary_search(step).unwrap_or_else(|_| panic!("step {step} is not in the full recording"));
+        assert_eq!(full.values[at], thinned.values[k], "step {step}");
+    }
+    let csv = String::from_utf8(read(&thin, "paper_triangular.events.csv")).unwrap();
+    let onset: f64 = csv.lines().nth(1).unwrap().split(',').nth(1).unwrap().parse().unwrap();
+    // Through the rupture (from its onset to 430 s) a row per ten steps and the changes.
+    let rupture = |s: &slipfront::inspect::Series| s.times.iter().filter(|&&t| (onset..430.0).contains(&t)).count();
+    let (in_full, in_thinned) = (rupture(&full), rupture(&thinned));
+    println!("through the rupture {in_thinned} rows against {in_full}");
+    assert!(in_thinned * 5 < in_full, "through the rupture {in_thinned} rows against {in_full}");
+    let first_after = |s: &slipfront::inspect::Series| s.steps[s.times.partition_point(|&t| t < onset)];
+    assert_eq!(first_after(&thinned), first_after(&full), "the first row after the onset at {onset} s");
+}

@@ -196,12 +196,26 @@ impl Case {
             None => Problem::Point,
             Some(unknowns) => {
                 // Only a body small enough for the pair is bounded: a cell at a time, cheap there.
-                let stiffness = (unknowns <= AUTO_PAIR_UNKNOWNS)
+                let omega = (unknowns <= AUTO_PAIR_UNKNOWNS)
                     .then(|| self.scene.stiffest_frequency(p))
                     .flatten()
-                    .map(|omega| omega * self.time.dt)
-                    .filter(|turn| turn.is_finite());
-                Problem::Body { unknowns, healing, stiffness, evolving: self.scene.has_evolving_normal() }
+                    .filter(|omega| omega.is_finite());
+                let stiffness = omega.map(|omega| omega * self.time.dt);
+                // The drive's time to load the weakest point by its elastic slip at its static
+                // strength, μ_s f_n / (α_t v), in radians of the stiffest mode.
+                // Read only from a scene that holds its rules (a table's lengths, say): this runs
+                // before the case's values are checked.
+                let valid = {
+                    let mut scene = Checker::new("scene");
+                    self.scene.check(&mut scene);
+                    scene.violations.is_empty()
+                };
+                let weakest = valid.then(|| self.scene.weakest_normal_traction()).flatten();
+                let loading = omega
+                    .zip(weakest)
+                    .map(|(omega, (f_n, _))| omega * p.mu_s * f_n / (p.alpha_t * self.scene.driving_velocity()));
+                let evolving = self.scene.has_evolving_normal();
+                Problem::Body { unknowns, healing, stiffness, loading: loading.filter(|l| l.is_finite()), evolving }
             }
         }
     }

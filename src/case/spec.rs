@@ -150,6 +150,17 @@ impl TimeSpec {
                         c.key("tolerance")
                     ),
                 );
+            } else if self.method == Method::Cycle {
+                c.fail(
+                    "accuracy",
+                    accuracy,
+                    format!(
+                        "does not apply to {} = \"cycle\", whose onset errors have no measured map to a setting: \
+                         give {} (the change of the contact's state allowed per step) instead",
+                        c.key("integrator"),
+                        c.key("tolerance")
+                    ),
+                );
             } else if c.finite("accuracy", accuracy) && !(smallest..=largest).contains(&accuracy) {
                 c.fail(
                     "accuracy",
@@ -168,7 +179,8 @@ impl TimeSpec {
         if self.t_end.is_finite() && self.dt.is_finite() && self.dt > 0.0 && self.t_end > 0.0 {
             if self.dt > self.t_end {
                 c.fail("dt", self.dt, format!("must not exceed {} = {}", c.key("t_end"), self.t_end));
-            } else if self.t_end / self.dt > MAX_STEPS {
+            } else if self.t_end / self.dt > MAX_STEPS && self.method != Method::Cycle {
+                // Cycle steps are `dt` only through slips ([`Method::Cycle`]); through stick they grow.
                 c.fail(
                     "dt",
                     self.dt,
@@ -202,7 +214,7 @@ impl TimeSpec {
 
     /// Smallest adaptive step (s) ([`Method::dt_min`]).
     pub fn dt_min(&self) -> f64 {
-        self.method.dt_min(self.t_end)
+        self.method.dt_min(self.t_end, self.dt)
     }
 
     /// Number of steps: `t_end/dt` rounded up; the last step is shortened to end at `t_end`.
@@ -687,6 +699,10 @@ pub struct RecordSpec {
     /// while any segment slips.
     #[serde(default = "default_stick_every")]
     pub stick_every: u64,
+    /// While a segment slips, record every `slip_every`-th step (default 1: every step), and
+    /// always the steps where the contact goes from stick to slip and back.
+    #[serde(default = "default_slip_every")]
+    pub slip_every: u64,
     /// Displacement magnification of the spatial view (default 1: true scale).
     #[serde(default = "default_magnification")]
     pub magnification: f64,
@@ -702,6 +718,7 @@ impl Default for RecordSpec {
             segments: Selection::default(),
             nodes: Selection::default(),
             stick_every: default_stick_every(),
+            slip_every: default_slip_every(),
             magnification: default_magnification(),
             spatial: default_spatial(),
         }
@@ -714,6 +731,10 @@ fn all_quantities() -> Vec<Quantity> {
 
 fn default_stick_every() -> u64 {
     50
+}
+
+fn default_slip_every() -> u64 {
+    1
 }
 
 fn default_magnification() -> f64 {
@@ -804,6 +825,9 @@ impl RecordSpec {
     pub fn check(&self, scene: &SceneSpec, c: &mut Checker<'_>) {
         if self.stick_every == 0 {
             c.fail("stick_every", 0, "must be at least 1");
+        }
+        if self.slip_every == 0 {
+            c.fail("slip_every", 0, "must be at least 1");
         }
         c.positive("magnification", self.magnification);
         let (nodes, segments) = scene.contact_sizes();

@@ -17,6 +17,7 @@ pub enum IntegratorMemory {
     Wilson(WilsonMemory),
     StepDoubling { wilson: WilsonMemory, control: StepControl, statistics: Statistics },
     Central(CentralMemory),
+    Cycle { wilson: WilsonMemory, control: StepControl, statistics: Statistics },
     RateForm { control: StepControl, memory: Option<Box<RungeKutta>>, statistics: Statistics },
 }
 
@@ -27,6 +28,7 @@ impl IntegratorMemory {
             IntegratorMemory::Wilson(_) => "Wilson's method",
             IntegratorMemory::StepDoubling { .. } => "adaptive Wilson steps",
             IntegratorMemory::Central(_) => "central differences",
+            IntegratorMemory::Cycle { .. } => "cycle steps",
             IntegratorMemory::RateForm { .. } => "a Runge–Kutta method on the rate form",
         }
     }

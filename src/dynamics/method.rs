@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::dynamics::central::{CentralDifference, highest_frequency};
 use crate::dynamics::control::StepControl;
+use crate::dynamics::cycle::CycleSteps;
 use crate::dynamics::integrator::Integrator;
 use crate::dynamics::rate_form::driver::{RateForm, Tableau};
 use crate::dynamics::rate_form::tsit5::bounded_growth;
@@ -33,6 +34,12 @@ pub enum Method {
     /// step ([`crate::dynamics::central`]): frames every `dt`, each taken in the fewest equal
     /// sub-steps the stability limit allows. No `tolerance`.
     Central,
+    /// Wilson's θ method with steps from the contact's rates, for slow drives and earthquake
+    /// cycles ([`crate::dynamics::cycle`]): `dt` through a slip, up to `dt_max` through stick,
+    /// steps far longer than the body's slowest period ending on the quasi-static path.
+    /// `tolerance` is the largest change of a contact point's state in one step, relative to
+    /// its scale.
+    Cycle,
 }
 
 /// `time.integrator` as a case file gives it: a method by name, or `auto` (the default), which
@@ -45,7 +52,7 @@ pub enum Choice {
 }
 
 /// Every value `time.integrator` takes.
-pub const CHOICES: [&str; 5] = ["auto", "wilson", "tsit5", "sdirk4", "central"];
+pub const CHOICES: [&str; 6] = ["auto", "wilson", "tsit5", "sdirk4", "central", "cycle"];
 
 impl<'de> Deserialize<'de> for Choice {
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
@@ -69,8 +76,10 @@ pub enum Problem {
     /// `dt`, the number of healing times in a step; `stiffness`: an upper bound on the highest
     /// angular frequency of the body on its contact's elastic springs times `dt`, the radians
     /// its stiffest mode turns in a step ([`crate::fem::stiffest`]; `None` where not bounded);
-    /// `evolving`: some contact's normal traction evolves.
-    Body { unknowns: usize, healing: f64, stiffness: Option<f64>, evolving: bool },
+    /// `loading`: the drive's time to load the weakest contact point by its elastic slip at
+    /// its static strength, `μ_s f_n / (α_t v)`, in radians of that mode (`None` where either is
+    /// not known); `evolving`: some contact's normal traction evolves.
+    Body { unknowns: usize, healing: f64, stiffness: Option<f64>, loading: Option<f64>, evolving: bool },
 }
 
 /// The most radians the stiffest mode of a small body may turn in a step of `dt` for `auto` to
@@ -81,6 +90,13 @@ pub enum Problem {
 /// evolving contact with `α_n = 1e12` (447 radians) 51 s against Wilson's 0.24 s for 100 s.
 /// Up to 6 the pair's far smaller onset errors are worth its time.
 pub const AUTO_PAIR_STIFFNESS: f64 = 6.0;
+
+/// The fewest radians of its stiffest mode in which the drive loads a small body's contact
+/// ([`Problem::Body`]'s `loading`) for `auto` to give it cycle steps: 1 600 times the paper's
+/// drive (6.3 radians at 1 mm/s). The paper's block at 1e-9 m/s (6.3e6 radians) runs 100 years
+/// in 132 s with them, where Wilson's method with adaptive steps stops after a day of simulated
+/// time and SDIRK4 reaches 28 000 s in 90 s (docs/performance.md, "Slow loading").
+pub const AUTO_CYCLE_LOADING: f64 = 1e4;
 
 /// The most unknowns of a body that `auto` gives to Tsitouras' pair; larger bodies get central
 /// differences. On the paper's 10 × 1 mesh (44 unknowns) the pair runs 1000 s in half the time of
@@ -98,6 +114,15 @@ pub fn choose(problem: Problem) -> (Method, String) {
         Problem::Point => {
             (Method::Wilson, "a point scene prescribes its motion; Wilson's implicit friction update is its own".into())
         }
+        Problem::Body { unknowns, loading: Some(turns), .. } if turns > AUTO_CYCLE_LOADING => (
+            Method::Cycle,
+            format!(
+                "a body of {unknowns} unknowns whose drive loads its weakest contact point by its elastic slip \
+                 (μ_s f_n/α_t) in {turns:.1e} radians of its stiffest mode (more than {AUTO_CYCLE_LOADING:e}): \
+                 stick lasts far longer than the body's periods, and cycle steps grow through it to the \
+                 loading's own time scale"
+            ),
+        ),
         Problem::Body { unknowns, healing, .. } if unknowns <= AUTO_PAIR_UNKNOWNS && healing > 1.0 => (
             Method::Wilson,
             format!(
@@ -181,6 +206,10 @@ pub const SDIRK4_SMALLEST_TOLERANCE: f64 = 1e-11;
 /// asking for a step of 0.66 ps) and runs its 1000 s at 1e-13.
 pub const TSIT5_SMALLEST_TOLERANCE: f64 = 1e-13;
 
+/// The largest change of a contact point's state in one cycle step when `time.tolerance` is
+/// not given ([`crate::dynamics::cycle`]).
+pub const CYCLE_DEFAULT_TOLERANCE: f64 = 0.01;
+
 /// Most steps a run may take, to refuse a typo such as `dt = 1e-12` before it starts.
 pub const MAX_STEPS: f64 = 1e9;
 
@@ -197,7 +226,9 @@ pub struct ToleranceRule {
 impl Method {
     /// The method a case file names `name`, if any.
     pub fn from_name(name: &str) -> Option<Self> {
-        [Method::Wilson, Method::Tsit5, Method::Sdirk4, Method::Central].into_iter().find(|m| m.name() == name)
+        [Method::Wilson, Method::Tsit5, Method::Sdirk4, Method::Central, Method::Cycle]
+            .into_iter()
+            .find(|m| m.name() == name)
     }
 
     /// The setting that aims at a relative onset error of `accuracy` (`time.accuracy`): the
@@ -222,6 +253,7 @@ impl Method {
             Method::Tsit5 => "tsit5",
             Method::Sdirk4 => "sdirk4",
             Method::Central => "central",
+            Method::Cycle => "cycle",
         }
     }
 
@@ -242,6 +274,12 @@ impl Method {
                  exceed it at a slip's onset"
                     .to_string(),
             ),
+            Method::Cycle => (
+                None,
+                "the largest change of a contact point's traction, structure or plastic slip in one step, \
+                 relative to its static strength, its range and its elastic slip"
+                    .to_string(),
+            ),
             Method::Central => return None,
         };
         Some(ToleranceRule { smallest, largest: 0.1, meaning })
@@ -254,6 +292,7 @@ impl Method {
             Method::Wilson => tolerance,
             Method::Tsit5 => Some(tolerance.unwrap_or(TSIT5_DEFAULT_TOLERANCE)),
             Method::Sdirk4 => Some(tolerance.unwrap_or(SDIRK4_DEFAULT_TOLERANCE)),
+            Method::Cycle => Some(tolerance.unwrap_or(CYCLE_DEFAULT_TOLERANCE)),
             Method::Central => None,
         }
     }
@@ -262,7 +301,7 @@ impl Method {
     /// Wilson's method does; the Runge–Kutta methods' error control bounds their steps; central
     /// differences conserve energy up to their truncation error.
     pub fn guards_energy(self) -> bool {
-        self == Method::Wilson
+        matches!(self, Method::Wilson | Method::Cycle)
     }
 
     /// Whether the method reports each point's plastic slip rate `Λ` at the end of a step
@@ -289,8 +328,10 @@ impl Method {
     /// of `t_end`): they walk through the logarithmic singularity of `Λ` where a traction
     /// changes sign (`R → 0` in the `-ln R` of eq. 5's denominator) with steps that grow
     /// geometrically from picoseconds.
-    pub fn dt_min(self, t_end: f64) -> f64 {
+    /// Cycle steps never go below `dt`, the step through a slip.
+    pub fn dt_min(self, t_end: f64, dt: f64) -> f64 {
         match self {
+            Method::Cycle => dt,
             Method::Wilson | Method::Central => t_end / MAX_STEPS,
             Method::Tsit5 | Method::Sdirk4 => 4.0 * f64::EPSILON * t_end,
         }
@@ -314,6 +355,11 @@ impl Method {
             (Method::Sdirk4, tolerance) => format!(
                 "by the L-stable SDIRK 4(3) from a step of {dt} s, tolerance {:e} per step",
                 tolerance.unwrap_or(SDIRK4_DEFAULT_TOLERANCE)
+            ),
+            (Method::Cycle, tolerance) => format!(
+                "in Wilson steps from {dt} s through a slip to time.dt_max through stick, each changing the \
+                 contact's state by at most {:e} of its scale",
+                tolerance.unwrap_or(CYCLE_DEFAULT_TOLERANCE)
             ),
         }
     }
@@ -346,6 +392,9 @@ impl Stepping {
             (Method::Wilson, None) => Box::new(Wilson::default()),
             (Method::Wilson, Some(tolerance)) => Box::new(StepDoubling::new(control(tolerance, self.dt_max))),
             (Method::Central, _) => Box::new(CentralDifference::for_system(system)),
+            (Method::Cycle, tolerance) => {
+                Box::new(CycleSteps::new(control(tolerance.unwrap_or(CYCLE_DEFAULT_TOLERANCE), self.dt_max), system))
+            }
             (Method::Tsit5, tolerance) => rate_form(
                 Tableau::Tsit5,
                 tolerance.unwrap_or(TSIT5_DEFAULT_TOLERANCE),

@@ -9,6 +9,7 @@ pub mod central;
 pub mod condensed;
 pub mod contact;
 pub mod control;
+pub mod cycle;
 pub mod energy;
 pub mod error;
 pub mod integrator;

@@ -393,8 +393,11 @@ pub struct RunInfo {
     pub spatial: bool,
     pub magnification: f64,
     pub slip_rate_threshold: f64,
-    /// In stick, every `stick_every`-th step is recorded; every step while a segment slips.
+    /// In stick, every `stick_every`-th step is recorded; every `slip_every`-th while a
+    /// segment slips.
     pub stick_every: u64,
+    #[serde(default = "every_step")]
+    pub slip_every: u64,
     /// The contacts' names, where the scene has several (each has its own profiles); empty
     /// for one.
     #[serde(default)]
@@ -471,6 +474,7 @@ impl RunInfo {
             magnification: plan.spec.magnification,
             slip_rate_threshold: plan.slip_rate_threshold,
             stick_every: plan.spec.stick_every,
+            slip_every: plan.spec.slip_every,
             contacts: layout.contacts.iter().map(|c| c.name.clone()).collect(),
             axisymmetric: layout.axisymmetric,
             segment_centres: segments
@@ -497,6 +501,7 @@ fn old_series_layout() -> String {
 pub struct Decimator {
     threshold: f64,
     stick_every: u64,
+    slip_every: u64,
     t_end: f64,
     last: Option<u64>,
     /// Whether a segment slipped in the frame recorded last.
@@ -512,15 +517,17 @@ impl Decimator {
         Self {
             threshold: plan.slip_rate_threshold,
             stick_every: plan.spec.stick_every,
+            slip_every: plan.spec.slip_every,
             t_end: plan.t_end,
             last: None,
             slipping: false,
         }
     }
 
-    /// Whether `frame` is recorded (and, if so, remembers it): the first, every step while a
-    /// segment slips and the step on which the last slip ends (so that every event's onset and
-    /// end lie on recorded rows or between the rows either side), in stick the first step of
+    /// Whether `frame` is recorded (and, if so, remembers it): the first, every step where the
+    /// contact goes from stick (no segment slips) to slip and back, every `slip_every`-th step
+    /// while a segment slips (with the default 1, every one: every event's onset and end then lie
+    /// on recorded rows or between the rows either side), in stick the first step of
     /// every `stick_every` (steps `k stick_every` when none is skipped), and the frame at
     /// `t_end`. The stick steps are counted from step 0, not from the last recorded: so the
     /// frame at `t_end` shifts none of them, and a run extended past its end records the rows
@@ -544,10 +551,9 @@ impl Decimator {
         match self.last {
             None => true,
             Some(last) => {
-                self.slipping
-                    || self.slips(frame)
-                    || frame.step / self.stick_every > last / self.stick_every
-                    || frame.time >= self.t_end * (1.0 - 1e-12)
+                let slips = self.slips(frame);
+                let every = if slips { self.slip_every } else { self.stick_every };
+                slips != self.slipping || frame.step / every > last / every || frame.time >= self.t_end * (1.0 - 1e-12)
             }
         }
     }
@@ -671,4 +677,9 @@ impl RunEnding {
             digests,
         }
     }
+}
+
+/// `slip_every` of a recording written before it existed: every step.
+fn every_step() -> u64 {
+    1
 }
