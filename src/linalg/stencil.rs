@@ -40,31 +40,42 @@ impl pulp::WithSimd for MulNodes<'_> {
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _: S) {
         let Self { runs, x, swapped, y, first } = self;
-        y.iter_mut().for_each(|v| *v = 0.0);
         for run in runs {
             let start = 2 * (run.first - first);
             let out = &mut y[start..start + 2 * run.len];
-            for &(offset, [xx, xy, yx, yy]) in &run.blocks {
+            if run.blocks.is_empty() {
+                out.fill(0.0);
+            }
+            for (b, &(offset, [xx, xy, yx, yy])) in run.blocks.iter().enumerate() {
                 let from = 2 * run.first.wrapping_add_signed(offset);
                 let (direct, cross) = (&x[from..from + 2 * run.len], &swapped[from..from + 2 * run.len]);
+                // The first block writes, the others add (no pass to clear `out`).
+                let assign = b == 0;
                 // Two nodes at a time: four lanes with the coefficients (xx, yy, xx, yy) and
                 // (xy, yx, xy, yx).
                 let mut out4 = out.chunks_exact_mut(4);
                 let (direct4, cross4) = (direct.chunks_exact(4), cross.chunks_exact(4));
                 let (direct_rest, cross_rest) = (direct4.remainder(), cross4.remainder());
                 for ((o, d), c) in (&mut out4).zip(direct4).zip(cross4) {
-                    o[0] += xx * d[0] + xy * c[0];
-                    o[1] += yy * d[1] + yx * c[1];
-                    o[2] += xx * d[2] + xy * c[2];
-                    o[3] += yy * d[3] + yx * c[3];
+                    let terms =
+                        [xx * d[0] + xy * c[0], yy * d[1] + yx * c[1], xx * d[2] + xy * c[2], yy * d[3] + yx * c[3]];
+                    accumulate(o, &terms, assign);
                 }
                 let o = out4.into_remainder();
                 if o.len() == 2 {
-                    o[0] += xx * direct_rest[0] + xy * cross_rest[0];
-                    o[1] += yy * direct_rest[1] + yx * cross_rest[1];
+                    let terms = [xx * direct_rest[0] + xy * cross_rest[0], yy * direct_rest[1] + yx * cross_rest[1]];
+                    accumulate(o, &terms, assign);
                 }
             }
         }
+    }
+}
+
+/// `out = terms` or `out += terms`.
+#[inline(always)]
+fn accumulate(out: &mut [f64], terms: &[f64], assign: bool) {
+    for (o, t) in out.iter_mut().zip(terms) {
+        *o = if assign { *t } else { *o + t };
     }
 }
 

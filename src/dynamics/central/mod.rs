@@ -28,9 +28,13 @@
 //! trapezoidal rule of eq. 4, the consistency solve not converging) is repeated in two halves
 //! of the same slip, down to `h / 2^MAX_HALVINGS`; the body's step is not repeated.
 
+mod kick;
+
 use rayon::prelude::*;
 
-use crate::dynamics::body::LinearBody;
+use kick::{Forces, Kick, Rows};
+
+use crate::dynamics::body::{LinearBody, LoadAt};
 use crate::dynamics::contact::ContactBoundary;
 use crate::dynamics::control::AdaptiveError;
 use crate::dynamics::error::{MAX_HALVINGS, StepError};
@@ -62,6 +66,9 @@ pub struct CentralDifference {
     stiffness_force: Vec<f64>,
     /// `u` with each node's two values exchanged (see [`TemplateMatrix`]).
     swapped: Vec<f64>,
+    /// `u` and its swapped copy after the next drift, written while the product reads `u`.
+    next_displacement: Vec<f64>,
+    next_swapped: Vec<f64>,
     /// `1/m` per degree of freedom.
     inverse_mass: Vec<f64>,
     /// The degrees of freedom the contact points act on, ascending.
@@ -96,13 +103,15 @@ impl CentralDifference {
         contact_dofs.dedup();
         let parallel = body.dofs() >= PARALLEL_FROM_DOFS;
         let stiffness = TemplateMatrix::new(&body.stiffness);
-        let chunks = stiffness.as_ref().map_or_else(Vec::new, |s| s.chunks(if parallel { 8 } else { 1 }));
+        let chunks = stiffness.as_ref().map_or_else(Vec::new, |s| s.chunks(if parallel { CHUNKS } else { 1 }));
         Self {
             omega_max: highest_frequency(body, contact),
             stiffness,
             chunks,
             stiffness_force: vec![0.0; body.dofs()],
             swapped: vec![0.0; body.dofs()],
+            next_displacement: vec![0.0; body.dofs()],
+            next_swapped: vec![0.0; body.dofs()],
             inverse_mass: body.mass.iter().map(|m| 1.0 / m).collect(),
             contact_dofs,
             contact_force: vec![0.0; body.dofs()],
@@ -148,30 +157,26 @@ impl CentralDifference {
     }
 
     /// Advances by `dt` in the fewest equal sub-steps of at most [`CentralDifference::stable_step`],
-    /// reported as one step: `plastic_increment` holds the slip of all of them.
+    /// reported as one step: `plastic_increment` holds the slip of all of them. Each sub-step
+    /// is a drift, the contact's update over it and a kick; the kick between two sub-steps
+    /// does the next one's drift in the same pass ([`Kick::WholeAndDrift`]).
     pub fn step(&mut self, system: &mut System, dt: f64) -> Result<(), StepError> {
         let substeps = (dt / self.stable_step()).ceil().max(1.0) as u64;
         let h = dt / substeps as f64;
         let start = system.state.time;
         system.state.plastic_increment.iter_mut().for_each(|p| *p = 0.0);
+        self.drift(&mut system.state, h);
         for i in 0..substeps {
-            self.substep(system, start + i as f64 * h, h)?;
+            let time = start + i as f64 * h;
+            self.update_contact(system, time, h)?;
+            let kick = if i + 1 < substeps { Kick::WholeAndDrift } else { Kick::Half };
+            if !self.kick(system, time + h, h, kick) {
+                return Err(StepError::NonFinite);
+            }
         }
         let s = &mut system.state;
-        if s.velocity.iter().chain(&s.displacement).any(|x| !x.is_finite()) {
-            return Err(StepError::NonFinite);
-        }
         s.time = start + dt;
         s.step += 1;
-        Ok(())
-    }
-
-    /// One sub-step of `h` from `time`: half kick and drift, the contact's update over the
-    /// drift, and the second half kick with the new forces.
-    fn substep(&mut self, system: &mut System, time: f64, h: f64) -> Result<(), StepError> {
-        self.drift(&mut system.state, h);
-        self.update_contact(system, time, h)?;
-        self.kick(system, time + h, h);
         Ok(())
     }
 
@@ -231,46 +236,99 @@ impl CentralDifference {
         Ok(())
     }
 
-    /// `a = M⁻¹ (f⁰ - K u + f_c - f_c(0))` at `t`, by chunks of nodes (`K u` of the chunk,
-    /// then the rest), and `v += h/2 a`.
-    fn kick(&mut self, system: &mut System, t: f64, h: f64) {
+    /// `a = M⁻¹ (f⁰ - K u + f_c - f_c(0))` at `t` by chunks of nodes (`K u` of the chunk, then
+    /// its rows), and the kick `kick` with it; after [`Kick::WholeAndDrift`] the next drift's
+    /// displacement becomes `u`. After [`Kick::Half`], whether every displacement and velocity
+    /// is finite.
+    fn kick(&mut self, system: &mut System, t: f64, h: f64, kick: Kick) -> bool {
         let s = &mut system.state;
-        let (body, displacement) = (&system.body, &s.displacement);
-        let load = body.load_at(t);
-        let mut stiffness_buffer = std::mem::take(&mut self.stiffness_force);
-        let mut tasks = Vec::with_capacity(self.chunks.len());
-        let (mut acceleration, mut velocity, mut stiffness_force) =
-            (&mut s.acceleration[..], &mut s.velocity[..], &mut stiffness_buffer[..]);
-        let mut first = 0;
-        for &(begin, end, nodes) in &self.chunks {
-            let rows = 2 * nodes;
-            let (a, a_rest) = std::mem::take(&mut acceleration).split_at_mut(rows);
-            let (v, v_rest) = std::mem::take(&mut velocity).split_at_mut(rows);
-            let (k, k_rest) = std::mem::take(&mut stiffness_force).split_at_mut(rows);
-            tasks.push((first, (begin, end), a, v, k));
-            (acceleration, velocity, stiffness_force) = (a_rest, v_rest, k_rest);
-            first += rows;
-        }
-        let shared = &*self;
-        let kick = |first: usize, acceleration: &mut [f64], velocity: &mut [f64], stiffness_force: &[f64]| {
-            for (i, ((a, v), ku)) in acceleration.iter_mut().zip(velocity.iter_mut()).zip(stiffness_force).enumerate() {
-                let r = first + i;
-                *a = (load.at(r) + shared.contact_force[r] - ku) * shared.inverse_mass[r];
-                *v += 0.5 * h * *a;
+        let body = &system.body;
+        let load_at = body.load_at(t);
+        let load_sum: Vec<f64>;
+        let load = match &load_at {
+            LoadAt::None => None,
+            LoadAt::One(pattern, g) => Some((*pattern, *g)),
+            LoadAt::Several(_) => {
+                load_sum = (0..body.dofs()).map(|r| load_at.at(r)).collect();
+                Some((&load_sum[..], 1.0))
             }
         };
-        match &shared.stiffness {
-            Some(stiffness) => tasks.into_par_iter().for_each(|(first, runs, a, v, k)| {
-                stiffness.mul_chunk(runs, displacement, &shared.swapped, k);
-                kick(first, a, v, k);
-            }),
-            None => {
-                body.stiffness.mul_vec(displacement, stiffness_force);
-                kick(0, acceleration, velocity, stiffness_force);
+        let mut buffers = [
+            std::mem::take(&mut self.stiffness_force),
+            std::mem::take(&mut self.next_displacement),
+            std::mem::take(&mut self.next_swapped),
+        ];
+        let forces = Forces {
+            contact_force: &self.contact_force,
+            inverse_mass: &self.inverse_mass,
+            load,
+            displacement: &s.displacement,
+        };
+        let [stiffness_force, next_displacement, next_swapped] = &mut buffers;
+        let all_rows = Rows {
+            first: 0,
+            acceleration: &mut s.acceleration,
+            velocity: &mut s.velocity,
+            stiffness_force,
+            next_displacement,
+            next_swapped,
+        };
+        let finite = match &self.stiffness {
+            Some(stiffness) => {
+                let tasks = split_rows(all_rows, &self.chunks);
+                tasks
+                    .into_par_iter()
+                    .zip(&self.chunks)
+                    .map(|(rows, &(begin, end, _))| {
+                        stiffness.mul_chunk((begin, end), forces.displacement, &self.swapped, rows.stiffness_force);
+                        rows.kick(kick, h, &forces)
+                    })
+                    .reduce(|| true, |a, b| a && b)
             }
+            None => {
+                body.stiffness.mul_vec(forces.displacement, all_rows.stiffness_force);
+                all_rows.kick(kick, h, &forces)
+            }
+        };
+        let [stiffness_force, next_displacement, next_swapped] = buffers;
+        self.stiffness_force = stiffness_force;
+        (self.next_displacement, self.next_swapped) = (next_displacement, next_swapped);
+        if kick == Kick::WholeAndDrift {
+            std::mem::swap(&mut s.displacement, &mut self.next_displacement);
+            std::mem::swap(&mut self.swapped, &mut self.next_swapped);
         }
-        self.stiffness_force = stiffness_buffer;
+        finite
     }
+}
+
+/// `rows` split into the consecutive chunks `(_, _, nodes)` of two rows per node.
+fn split_rows<'a>(mut rows: Rows<'a>, chunks: &[(usize, usize, usize)]) -> Vec<Rows<'a>> {
+    let mut parts = Vec::with_capacity(chunks.len());
+    for &(_, _, nodes) in chunks {
+        let n = 2 * nodes;
+        let (acceleration, a_rest) = std::mem::take(&mut rows.acceleration).split_at_mut(n);
+        let (velocity, v_rest) = std::mem::take(&mut rows.velocity).split_at_mut(n);
+        let (stiffness_force, k_rest) = std::mem::take(&mut rows.stiffness_force).split_at_mut(n);
+        let (next_displacement, u_rest) = std::mem::take(&mut rows.next_displacement).split_at_mut(n);
+        let (next_swapped, s_rest) = std::mem::take(&mut rows.next_swapped).split_at_mut(n);
+        parts.push(Rows {
+            first: rows.first,
+            acceleration,
+            velocity,
+            stiffness_force,
+            next_displacement,
+            next_swapped,
+        });
+        rows = Rows {
+            first: rows.first + n,
+            acceleration: a_rest,
+            velocity: v_rest,
+            stiffness_force: k_rest,
+            next_displacement: u_rest,
+            next_swapped: s_rest,
+        };
+    }
+    parts
 }
 
 impl Integrator for CentralDifference {
@@ -302,6 +360,10 @@ impl Integrator for CentralDifference {
         Ok(())
     }
 }
+
+/// Groups of rows per product with `K` on large bodies: a group's `K u`, velocities and
+/// displacements stay in the core's cache between the product and the kick.
+const CHUNKS: usize = 64;
 
 /// Degrees of freedom from which a step's loops are shared among threads (`rayon`): below
 /// this, handing out the work costs more than it saves.
