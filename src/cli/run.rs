@@ -26,13 +26,14 @@ pub struct RunArgs {
     /// The case file (TOML, SI units; see cases/ and the README).
     pub case: PathBuf,
     /// Override a case key, e.g. --set time.t_end=50, --set friction.rstar_law=eq4, or
-    /// --set time.integrator=tsit5 (Tsitouras' adaptive 5(4) pair instead of Wilson's θ method,
-    /// tolerance 1e-8 per step unless time.tolerance says otherwise),
-    /// --set time.integrator=sdirk4 (an adaptive L-stable implicit Runge–Kutta 4(3): long steps
-    /// through stick, tolerance 1e-7 per step unless time.tolerance says otherwise) or
-    /// --set time.integrator=central (explicit central differences, sub-stepped to their
-    /// stability limit: the fastest on fine meshes). Repeatable; checked by the same rules as
-    /// the file.
+    /// --set time.integrator=NAME to name the time integrator instead of `auto` (the default,
+    /// which prints what it chose and why): wilson (Wilson's θ method, fixed steps of time.dt),
+    /// tsit5 (Tsitouras' adaptive explicit 5(4) pair, tolerance 1e-8 per step unless
+    /// time.tolerance says otherwise), sdirk4 (an adaptive L-stable implicit Runge–Kutta 4(3),
+    /// tolerance 1e-7), central (explicit central differences, sub-stepped to their stability
+    /// limit: the fastest on fine meshes) or cycle (Wilson's steps sized by the contact's
+    /// rates, from time.dt in a slip to time.dt_max in stick: earthquake cycles at plate rates).
+    /// Repeatable; checked by the same rules as the file.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub overrides: Vec<String>,
     /// Folder for every output (created if missing).
