@@ -7,7 +7,9 @@
 
 Runs the case to T_END (default 8e8 s, its first two cycles; the MCAP log of every step is
 about 0.8 KB a step, 650 MB for these) into a scratch folder, reads the simulated time of
-every step (`record.stick_every = 1`: the log keeps every step, not every 50th in stick) from the log's `/contact/totals` messages, and draws the step size against time
+every step (`record.stick_every = 1` and `record.slip_every = 1`: the log keeps every step, not
+every 50th in stick nor the case's every 100th in a slip) from the log's `/contact/totals`
+messages, and draws the step size against time
 (docs/figures/cycle_slow_loading_steps.png). Prints the smallest and largest step, and the
 share of the steps (each one Wilson step of the same 44 unknowns, so nearly the share of the
 wall time) and of the simulated time taken by steps under 1 s, 1 s to 1e4 s, and above.
@@ -38,7 +40,7 @@ def step_times(t_end):
         subprocess.run(
             [ROOT / "target" / "release" / "slipfront", "run", ROOT / "cases" / "cycle_slow_loading.toml",
              "--no-rrd", "--quiet", "--out-dir", scratch, "--mcap", log, "--set", f"time.t_end={t_end:g}",
-             "--set", "record.stick_every=1"],
+             "--set", "record.stick_every=1", "--set", "record.slip_every=1"],
             check=True,
         )
         with open(log, "rb") as f:

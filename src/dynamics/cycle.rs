@@ -21,9 +21,13 @@
 //! them, and the event catalog filled with slips at 0.2 Pa of traction). After a step longer
 //! than [`QUASI_STATIC_RADIANS`] of the body's slowest mode, the state is put on the
 //! quasi-static path: velocities the step's mean `Δu/Δt`, accelerations 0. Inertia's share of
-//! the equation of motion over such a step is below `1/100²` of the stiffness's.
+//! the equation of motion over such a step is below `1/100²` of the stiffness's. Such a step
+//! is solved with `θ = 1`, at its own end: with a larger `θ` its end is interpolated from the
+//! solve at `t + θΔt` through the method's acceleration cubic, which after long steps leaves the
+//! body behind the base and the contact carrying the base's motion (docs/model.md).
 
 use crate::dynamics::control::{AdaptiveError, StepControl};
+use crate::dynamics::error::StepError;
 use crate::dynamics::integrator::{Integrator, Statistics};
 use crate::dynamics::memory::{IntegratorMemory, mismatch};
 use crate::dynamics::operator::Operator;
@@ -64,6 +68,18 @@ impl CycleSteps {
     }
 
     /// The next step after one of `h` that changed the contact by `change`.
+    /// One Wilson step of `h`; on the quasi-static path with `θ = 1`, so that the step's end is
+    /// the equilibrium solved for (see the module documentation).
+    fn step(&mut self, system: &mut System, h: f64) -> Result<(), StepError> {
+        if h < self.quasi_static {
+            return self.wilson.step(system, h);
+        }
+        let theta = std::mem::replace(&mut system.settings.theta, 1.0);
+        let outcome = self.wilson.step(system, h);
+        system.settings.theta = theta;
+        outcome
+    }
+
     fn next_step(&self, h: f64, change: f64) -> f64 {
         let c = &self.control;
         let factor = if change > 0.0 { c.tolerance / change } else { MAX_GROWTH };
@@ -77,7 +93,7 @@ impl Integrator for CycleSteps {
         loop {
             let h = self.control.next.min(limit);
             let start = system.snapshot();
-            let outcome = self.wilson.step(system, h).map(|()| largest_change(system, &start.state));
+            let outcome = self.step(system, h).map(|()| largest_change(system, &start.state));
             let floor = h <= self.control.dt_min * (1.0 + 1e-12);
             match outcome {
                 Ok(change) if floor || change <= REJECT_ABOVE * self.control.tolerance => {
