@@ -92,6 +92,24 @@ impl Rows<'_> {
 mod tests {
     use super::*;
 
+    /// What four rows hold after `kick` from velocities `v0` with `K u` = `ku`: `(a, v,
+    /// u_next, swapped, finite)`.
+    type Kicked = ([f64; 4], [f64; 4], [f64; 4], [f64; 4], bool);
+
+    fn kicked(kick: Kick, h: f64, forces: &Forces, v0: [f64; 4], ku: [f64; 4]) -> Kicked {
+        let (mut a, mut v, mut k, mut u_next, mut swapped) = ([0.0; 4], v0, ku, [0.0; 4], [0.0; 4]);
+        let rows = Rows {
+            first: 0,
+            acceleration: &mut a,
+            velocity: &mut v,
+            stiffness_force: &mut k,
+            next_displacement: &mut u_next,
+            next_swapped: &mut swapped,
+        };
+        let finite = rows.kick(kick, h, forces);
+        (a, v, u_next, swapped, finite)
+    }
+
     /// Both kicks on four rows, with and without a load, against the formulas written out.
     #[test]
     fn kicks_follow_their_formulas() {
@@ -104,16 +122,8 @@ mod tests {
             let a_of = |i: usize| (f(i) + fc[i] - ku[i]) * inverse_mass[i];
             let forces = Forces { contact_force: &fc, inverse_mass: &inverse_mass, load, displacement: &u };
             for kick in [Kick::Half, Kick::WholeAndDrift] {
-                let (mut a, mut v, mut k, mut u_next, mut swapped) = ([0.0; 4], v0, ku, [0.0; 4], [0.0; 4]);
-                let rows = Rows {
-                    first: 0,
-                    acceleration: &mut a,
-                    velocity: &mut v,
-                    stiffness_force: &mut k,
-                    next_displacement: &mut u_next,
-                    next_swapped: &mut swapped,
-                };
-                assert!(rows.kick(kick, h, &forces));
+                let (a, v, u_next, swapped, finite) = kicked(kick, h, &forces, v0, ku);
+                assert!(finite);
                 for i in 0..4 {
                     match kick {
                         Kick::Half => {
@@ -131,15 +141,7 @@ mod tests {
         }
         let forces =
             Forces { contact_force: &fc, inverse_mass: &inverse_mass, load: None, displacement: &[f64::NAN; 4] };
-        let (mut a, mut v, mut k, mut u_next, mut swapped) = ([0.0; 4], v0, ku, [0.0; 4], [0.0; 4]);
-        let rows = Rows {
-            first: 0,
-            acceleration: &mut a,
-            velocity: &mut v,
-            stiffness_force: &mut k,
-            next_displacement: &mut u_next,
-            next_swapped: &mut swapped,
-        };
-        assert!(!rows.kick(Kick::Half, h, &forces), "a displacement that is not finite is reported");
+        let (.., finite) = kicked(Kick::Half, h, &forces, v0, ku);
+        assert!(!finite, "a displacement that is not finite is reported");
     }
 }
