@@ -62,6 +62,13 @@ Run
     python3 scripts/plate_rate_reference.py                      # rtol sweep 1e-8 .. 1e-12, ~4 s
     python3 scripts/plate_rate_reference.py --rtol 1e-9 1e-10
     python3 scripts/plate_rate_reference.py --compare sf.csv     # stick-phase check, see below
+    python3 scripts/plate_rate_reference.py --stability          # the creep's stability with inertia, ~3 s
+
+--stability linearizes the equations with inertia (rhs_dyn below: the same block, lumped mass, every
+point on the loading branch) about the quasi-static path at times before the fold, and prints the
+eigenvalue of largest real part, beside that of the quasi-static equations alone; then, at 3e5 s
+before the fold, the same with the mass scaled, with kappa or xi set to 0 in the linearization,
+and the shape of the growing mode.
 
 --compare takes a table written by `slipfront export run.mcap -o sf.csv` of a slipfront run of the
 same case (e.g. `slipfront run cases/cycle_slow_loading.toml --no-rrd --out-dir D --set
@@ -329,6 +336,71 @@ def unstable_growth(result, taus=(1.0e4, 3.0e4)):
     return rates
 
 
+def dynamic_state(sol, t):
+    """The quasi-static path's state at t as a state of the equations with inertia: u in equilibrium
+    with f, v its rate, f and 1/R* as on the path."""
+    y = sol.sol(t)
+    ydot = rhs_qs(t, y)
+    u = np.linalg.solve(AMAT, PMAT @ y[:NPT] - FORCE0)
+    v = np.linalg.solve(AMAT, PMAT @ ydot[:NPT])
+    return np.concatenate([u, v, y])
+
+
+def jacobian(rhs, t, state, floors):
+    """Forward-difference Jacobian of rhs at state; floors[i] is the smallest step scale of state[i]."""
+    base = rhs(t, state)
+    jac = np.zeros((base.size, state.size))
+    for i in range(state.size):
+        h = 1e-7 * max(abs(state[i]), floors[i])
+        shifted = state.copy()
+        shifted[i] += h
+        jac[:, i] = (rhs(t, shifted) - base) / h
+    return jac
+
+
+def leading(jac):
+    """The eigenvalue of largest real part, and its eigenvector."""
+    values, vectors = np.linalg.eig(jac)
+    k = int(np.argmax(values.real))
+    return values[k], vectors[:, k]
+
+
+def stability():
+    """Prints the stability of the quasi-static path with and without inertia (see --stability)."""
+    global MASS, XI, KAPPA
+    r = quasi_static(1e-10)
+    sol, t_fold = r["sol"], r["stop"]
+    dyn_floors = np.concatenate([np.full(2 * NDOF, 1e-12), np.full(2 * NPT, 1e-6)])
+    qs_floors = np.full(2 * NPT, 1e-6)
+    print(f"Fold at {t_fold:.1f} s (rtol 1e-10). Eigenvalue of largest real part (1/s), linearized on the path:")
+    print("| before the fold (s) | with inertia: Re | Im | e-folding time (s) | quasi-static alone: Re |")
+    print("|---|---|---|---|---|")
+    for tau in (3e7, 1e7, 3e6, 1e6, 3e5, 1e5, 3e4, 1e4, 1e3):
+        t = t_fold - tau
+        dyn, _ = leading(jacobian(rhs_dyn, t, dynamic_state(sol, t), dyn_floors))
+        qs, _ = leading(jacobian(rhs_qs, t, sol.sol(t), qs_floors))
+        print(f"| {tau:.0e} | {dyn.real:+.3e} | {abs(dyn.imag):.3e} | {1 / dyn.real:.2e} | {qs.real:+.2e} |")
+    t = t_fold - 3e5
+    state = dynamic_state(sol, t)
+    print(f"\nAt {3e5:.0e} s before the fold, with inertia:")
+    mass = MASS.copy()
+    for scale in (1e-2, 1e2):
+        MASS = mass * scale
+        value, _ = leading(jacobian(rhs_dyn, t, state, dyn_floors))
+        print(f"  mass x {scale:g}: {value.real:+.3e} {abs(value.imag):+.3e}i")
+    MASS = mass
+    for name in ("KAPPA", "XI"):
+        kept = globals()[name]
+        globals()[name] = 0.0
+        value, _ = leading(jacobian(rhs_dyn, t, state, dyn_floors))
+        globals()[name] = kept
+        print(f"  {name.lower()} = 0 in the linearization: {value.real:+.3e} {abs(value.imag):+.3e}i")
+    _, mode = leading(jacobian(rhs_dyn, t, state, dyn_floors))
+    velocity = np.abs(mode[NDOF:NDOF + NX + 1])
+    print(f"  the growing mode's x-velocity at the contact nodes x = 0, 1, ..., 10 m (largest 1): "
+          f"{np.array2string(velocity / velocity.max(), precision=3)}")
+
+
 def compare(path, rtol):
     with open(path) as fh:
         rows = list(csv.DictReader(fh))
@@ -355,7 +427,11 @@ def main():
     ap.add_argument("--rtol", type=float, nargs="+", default=[1e-8, 1e-9, 1e-10, 1e-11, 1e-12])
     ap.add_argument("--compare", help="CSV from `slipfront export` of a run of the case (stick phase)")
     ap.add_argument("--compare-rtol", type=float, default=1e-10)
+    ap.add_argument("--stability", action="store_true", help="the quasi-static path's stability with inertia")
     args = ap.parse_args()
+    if args.stability:
+        stability()
+        return
     if args.compare:
         compare(args.compare, args.compare_rtol)
         return
