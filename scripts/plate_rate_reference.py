@@ -55,7 +55,10 @@ check `unloads` or Radau's step-size failure stops the integration within 0.1 s 
 So the quasi-static onset is the fold.  Past it the equilibrium is unstable, and with inertia the
 slip runs away at a growth rate that rises from 0 as ~sqrt(t - t_fold); the dynamic onset
 (threshold crossing) therefore lags t_fold by a delay set by that slow growth, estimated at the
-end of the run from the linearized dynamic system (rough: order 1e3 s).
+end of the run from the linearized dynamic system (rough: order 1e3 s).  With inertia the path is
+also unstable before the fold, to a slow oscillation of the low-stress end whose growth rate does
+not depend on the mass (--stability); the quasi-static equations, the limit of no mass, are stable
+there.  That oscillation is what slipfront's precursors grow from, seeded by its steps' errors.
 
 Run
 ---
