@@ -349,15 +349,19 @@ def dynamic_state(sol, t):
     return np.concatenate([u, v, y])
 
 
+JACOBIAN_STEP = 1e-6
+
+
 def jacobian(rhs, t, state, floors):
-    """Forward-difference Jacobian of rhs at state; floors[i] is the smallest step scale of state[i]."""
-    base = rhs(t, state)
-    jac = np.zeros((base.size, state.size))
+    """Central-difference Jacobian of rhs at state, relative step JACOBIAN_STEP; floors[i] is the
+    smallest scale of state[i] a step is taken relative to."""
+    jac = np.zeros((state.size, state.size))
     for i in range(state.size):
-        h = 1e-7 * max(abs(state[i]), floors[i])
-        shifted = state.copy()
-        shifted[i] += h
-        jac[:, i] = (rhs(t, shifted) - base) / h
+        h = JACOBIAN_STEP * max(abs(state[i]), floors[i])
+        up, down = state.copy(), state.copy()
+        up[i] += h
+        down[i] -= h
+        jac[:, i] = (rhs(t, up) - rhs(t, down)) / (2.0 * h)
     return jac
 
 
@@ -378,7 +382,7 @@ def stability():
     print(f"Fold at {t_fold:.1f} s (rtol 1e-10). Eigenvalue of largest real part (1/s), linearized on the path:")
     print("| before the fold (s) | with inertia: Re | Im | e-folding time (s) | quasi-static alone: Re |")
     print("|---|---|---|---|---|")
-    for tau in (3e7, 1e7, 3e6, 1e6, 3e5, 1e5, 3e4, 1e4, 1e3):
+    for tau in (3e7, 1e7, 3e6, 1e6, 3e5, 1e5, 3e4, 1e4):
         t = t_fold - tau
         dyn, _ = leading(jacobian(rhs_dyn, t, dynamic_state(sol, t), dyn_floors))
         qs, _ = leading(jacobian(rhs_qs, t, sol.sol(t), qs_floors))
@@ -431,8 +435,11 @@ def main():
     ap.add_argument("--compare", help="CSV from `slipfront export` of a run of the case (stick phase)")
     ap.add_argument("--compare-rtol", type=float, default=1e-10)
     ap.add_argument("--stability", action="store_true", help="the quasi-static path's stability with inertia")
+    ap.add_argument("--jacobian-step", type=float, default=JACOBIAN_STEP,
+                    help="relative step of --stability's central differences (a check on their convergence)")
     args = ap.parse_args()
     if args.stability:
+        globals()["JACOBIAN_STEP"] = args.jacobian_step
         stability()
         return
     if args.compare:
