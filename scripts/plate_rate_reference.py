@@ -322,34 +322,32 @@ def unstable_growth(result, taus=(1.0e4, 3.0e4)):
     rates = []
     for tau in taus:
         t = result["stop"] + tau
-        y = y0 + (t - t0) * ydot
-        u = np.linalg.solve(AMAT, PMAT @ y[:NPT] - FORCE0)
-        v = np.linalg.solve(AMAT, PMAT @ ydot[:NPT])
-        state = np.concatenate([u, v, y])
-        base = rhs_dyn(t, state)
-        jac = np.zeros((state.size, state.size))
-        for i in range(state.size):
-            h = 1e-7 * max(abs(state[i]), 1e-6 if i >= 2 * NDOF else 1e-12)
-            shifted = state.copy()
-            shifted[i] += h
-            jac[:, i] = (rhs_dyn(t, shifted) - base) / h
-        eig = np.linalg.eigvals(jac)
+        state = as_dynamic(y0 + (t - t0) * ydot, ydot)
+        eig = np.linalg.eigvals(jacobian(rhs_dyn, t, state, DYNAMIC_FLOORS))
         real = eig[np.abs(eig.imag) < 1e-9 * np.abs(eig).max()].real
         rates.append((tau, real.max()))
     return rates
 
 
-def dynamic_state(sol, t):
-    """The quasi-static path's state at t as a state of the equations with inertia: u in equilibrium
-    with f, v its rate, f and 1/R* as on the path."""
-    y = sol.sol(t)
-    ydot = rhs_qs(t, y)
+def as_dynamic(y, ydot):
+    """A quasi-static state y = (f, 1/R*) with rates ydot as a state of the equations with inertia:
+    u in equilibrium with f, v its rate."""
     u = np.linalg.solve(AMAT, PMAT @ y[:NPT] - FORCE0)
     v = np.linalg.solve(AMAT, PMAT @ ydot[:NPT])
     return np.concatenate([u, v, y])
 
 
+def dynamic_state(sol, t):
+    """The quasi-static path's state at t as a state of the equations with inertia."""
+    y = sol.sol(t)
+    return as_dynamic(y, rhs_qs(t, y))
+
+
 JACOBIAN_STEP = 1e-6
+# Smallest scales the Jacobian's steps are taken relative to: displacements and velocities, then
+# tractions and 1/R*.
+DYNAMIC_FLOORS = np.concatenate([np.full(2 * NDOF, 1e-12), np.full(2 * NPT, 1e-6)])
+QUASI_STATIC_FLOORS = np.full(2 * NPT, 1e-6)
 
 
 def jacobian(rhs, t, state, floors):
@@ -377,15 +375,13 @@ def stability():
     global MASS, XI, KAPPA
     r = quasi_static(1e-10)
     sol, t_fold = r["sol"], r["stop"]
-    dyn_floors = np.concatenate([np.full(2 * NDOF, 1e-12), np.full(2 * NPT, 1e-6)])
-    qs_floors = np.full(2 * NPT, 1e-6)
     print(f"Fold at {t_fold:.1f} s (rtol 1e-10). Eigenvalue of largest real part (1/s), linearized on the path:")
     print("| before the fold (s) | with inertia: Re | Im | e-folding time (s) | quasi-static alone: Re |")
     print("|---|---|---|---|---|")
     for tau in (3e7, 1e7, 3e6, 1e6, 3e5, 1e5, 3e4, 1e4):
         t = t_fold - tau
-        dyn, _ = leading(jacobian(rhs_dyn, t, dynamic_state(sol, t), dyn_floors))
-        qs, _ = leading(jacobian(rhs_qs, t, sol.sol(t), qs_floors))
+        dyn, _ = leading(jacobian(rhs_dyn, t, dynamic_state(sol, t), DYNAMIC_FLOORS))
+        qs, _ = leading(jacobian(rhs_qs, t, sol.sol(t), QUASI_STATIC_FLOORS))
         print(f"| {tau:.0e} | {dyn.real:+.3e} | {abs(dyn.imag):.3e} | {1 / dyn.real:.2e} | {qs.real:+.2e} |")
     t = t_fold - 3e5
     state = dynamic_state(sol, t)
@@ -393,16 +389,16 @@ def stability():
     mass = MASS.copy()
     for scale in (1e-2, 1e2):
         MASS = mass * scale
-        value, _ = leading(jacobian(rhs_dyn, t, state, dyn_floors))
+        value, _ = leading(jacobian(rhs_dyn, t, state, DYNAMIC_FLOORS))
         print(f"  mass x {scale:g}: {value.real:+.3e} {abs(value.imag):+.3e}i")
     MASS = mass
     for name in ("KAPPA", "XI"):
         kept = globals()[name]
         globals()[name] = 0.0
-        value, _ = leading(jacobian(rhs_dyn, t, state, dyn_floors))
+        value, _ = leading(jacobian(rhs_dyn, t, state, DYNAMIC_FLOORS))
         globals()[name] = kept
         print(f"  {name.lower()} = 0 in the linearization: {value.real:+.3e} {abs(value.imag):+.3e}i")
-    _, mode = leading(jacobian(rhs_dyn, t, state, dyn_floors))
+    _, mode = leading(jacobian(rhs_dyn, t, state, DYNAMIC_FLOORS))
     velocity = np.abs(mode[NDOF:NDOF + NX + 1])
     print(f"  the growing mode's x-velocity at the contact nodes x = 0, 1, ..., 10 m (largest 1): "
           f"{np.array2string(velocity / velocity.max(), precision=3)}")
