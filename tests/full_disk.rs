@@ -195,3 +195,35 @@ fn passes_check(path: &Path) {
     let output = binary().arg("check").arg(path).output().unwrap();
     assert!(output.status.success(), "check {}: {}", path.display(), String::from_utf8_lossy(&output.stdout));
 }
+
+/// Fills the file system of `dir` with a file of zeros until it refuses more.
+fn fill(dir: &Path) {
+    use std::io::Write;
+    let mut filler = std::fs::File::create(dir.join("filler")).unwrap();
+    let block = vec![0_u8; 4096];
+    while filler.write_all(&block).is_ok() {}
+}
+
+#[test]
+fn a_catalog_that_cannot_be_written_on_a_full_disk_keeps_what_it_held() {
+    // The run writes each catalog's header when it starts and the whole catalog when it ends;
+    // the end's write, with the disk full, must leave the header, not an empty file (which the
+    // run's output lock then removed) or a line cut short.
+    use slipfront::sink::catalog::write_catalog;
+    let Some(tiny) = Tiny::mount("catalog") else { return };
+    let path = tiny.0.join("run.events.csv");
+    let header = "segment,onset_s\n";
+    let whole = format!("{header}{}", "3,420.195505\n".repeat(1000));
+    write_catalog(&path, header).unwrap();
+    fill(&tiny.0);
+    let error = write_catalog(&path, &whole).unwrap_err().0;
+    assert!(error.contains("No space left on device"), "{error}");
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), header, "the catalog after the failed write");
+    // With room again, the same write gives the whole catalog.
+    std::fs::remove_file(tiny.0.join("filler")).unwrap();
+    write_catalog(&path, &whole).unwrap();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), whole);
+    // A catalog that does not start with what the file holds replaces it.
+    write_catalog(&path, header).unwrap();
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), header);
+}

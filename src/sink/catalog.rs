@@ -47,12 +47,12 @@ impl Sink for CatalogSink {
         self.ring = layout.axisymmetric;
         self.openings_path = layout.evolving_normal.then(|| openings_path_for(&self.events_path));
         // Fail now, not after the run, if the file cannot be written.
-        write_file(&self.events_path, &events_csv(&[]))?;
+        write_catalog(&self.events_path, &events_csv(&[]))?;
         if let Some(path) = &self.openings_path {
-            write_file(path, &openings_csv(&[]))?;
+            write_catalog(path, &openings_csv(&[]))?;
         }
         if let Some(path) = &self.ruptures_path {
-            write_file(path, &ruptures_csv_in(&[], self.ring))?;
+            write_catalog(path, &ruptures_csv_in(&[], self.ring))?;
         }
         Ok(())
     }
@@ -62,19 +62,40 @@ impl Sink for CatalogSink {
     }
 
     fn finish(&mut self, _ending: Ending, _last: Option<&Frame>, catalog: &Catalog) -> Result<(), SinkError> {
-        write_file(&self.events_path, &events_csv(&catalog.events))?;
+        write_catalog(&self.events_path, &events_csv(&catalog.events))?;
         if let Some(path) = &self.ruptures_path {
-            write_file(path, &ruptures_csv_in(&catalog.ruptures, self.ring))?;
+            write_catalog(path, &ruptures_csv_in(&catalog.ruptures, self.ring))?;
         }
         if let Some(path) = &self.openings_path {
-            write_file(path, &openings_csv(&catalog.openings))?;
+            write_catalog(path, &openings_csv(&catalog.openings))?;
         }
         Ok(())
     }
 }
 
-fn write_file(path: &PathBuf, text: &str) -> Result<(), SinkError> {
-    std::fs::write(path, text).map_err(|e| SinkError(format!("cannot write {}: {e}", path.display())))
+/// Writes a catalog whole, in the file the run holds locked. Where the file already holds the
+/// start of `text` (its header, written by [`CatalogSink::begin`]), only the rest is added and
+/// a failed addition is cut off again, so that a full disk leaves the catalog as it was, never
+/// empty or cut mid-line.
+pub fn write_catalog(path: &PathBuf, text: &str) -> Result<(), SinkError> {
+    let cannot = |e: std::io::Error| SinkError(format!("cannot write {}: {e}", path.display()));
+    match std::fs::read(path) {
+        Ok(held) if text.as_bytes().starts_with(&held) => extend(path, held.len() as u64, text).map_err(cannot),
+        _ => std::fs::write(path, text).map_err(cannot),
+    }
+}
+
+/// Adds `text` past its first `held` bytes (which the file already holds) and sets the file's
+/// length to it; on failure puts the length back to `held`, which needs no space.
+fn extend(path: &PathBuf, held: u64, text: &str) -> std::io::Result<()> {
+    use std::os::unix::fs::FileExt;
+    let file = std::fs::OpenOptions::new().write(true).open(path)?;
+    let added =
+        file.write_all_at(&text.as_bytes()[held as usize..], held).and_then(|()| file.set_len(text.len() as u64));
+    if added.is_err() {
+        let _ = file.set_len(held);
+    }
+    added
 }
 
 /// The events CSV text.
