@@ -79,8 +79,11 @@ impl Sink for CatalogSink {
 /// empty or cut mid-line.
 pub fn write_catalog(path: &PathBuf, text: &str) -> Result<(), SinkError> {
     let cannot = |e: std::io::Error| SinkError(format!("cannot write {}: {e}", path.display()));
-    match std::fs::read(path) {
-        Ok(held) if text.as_bytes().starts_with(&held) => extend(path, held.len() as u64, text).map_err(cannot),
+    // Only a regular file no longer than `text` is read (`--events /dev/full` never ends).
+    match crate::files::read_capped(path, text.len() as u64, "a catalog") {
+        Ok(held) if !held.is_empty() && text.as_bytes().starts_with(&held) => {
+            extend(path, held.len() as u64, text).map_err(cannot)
+        }
         _ => std::fs::write(path, text).map_err(cannot),
     }
 }
