@@ -27,12 +27,23 @@ fn main() -> Result<(), String> {
     let mut chunks = Vec::new();
     let mut recording = None;
     for message in decoder {
-        let Ok(LogMsg::ArrowMsg(store, arrow)) = message else { continue };
+        let message = match message {
+            Ok(message) => message,
+            Err(e) if chunks.is_empty() => return Err(format!("{input}: not a readable recording ({e})")),
+            Err(e) => {
+                eprintln!("{input}: read up to damaged data ({e}); measuring the {} chunks before it", chunks.len());
+                break;
+            }
+        };
+        let LogMsg::ArrowMsg(store, arrow) = message else { continue };
         if store.is_blueprint() {
             continue;
         }
         recording.get_or_insert(store);
         chunks.push(Chunk::from_arrow_msg(&arrow).map_err(|e| format!("{input}: {e}"))?);
+    }
+    if chunks.is_empty() {
+        return Err(format!("{input}: holds no recorded chunks (not a recording, or damaged from its start)"));
     }
     let rows: usize = chunks.iter().map(Chunk::num_rows).sum();
     match output.as_str() {
