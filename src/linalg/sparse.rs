@@ -93,8 +93,9 @@ impl SymmetricMatrix {
             if xj == 0.0 {
                 continue;
             }
-            for k in col_ptr[j]..col_ptr[j + 1] {
-                y[row_idx[k]] += self.values[k] * xj;
+            let column = col_ptr[j]..col_ptr[j + 1];
+            for (&row, &value) in row_idx[column.clone()].iter().zip(&self.values[column]) {
+                y[row] += value * xj;
             }
         }
     }
