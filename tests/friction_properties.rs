@@ -7,11 +7,13 @@
 //!   increment reverses the result exactly (bit for bit).
 //! - Restarts: starting the consistency solve from another update of the same state (another
 //!   increment, another step length) changes the work, not the result.
+//! - The rate form's rates held on a branch are the law's own (eqs. 4-9 term by term).
 //! - Consistency: the returned tangents `∂f_t/∂Δū` and `∂(1/R*)/∂Δū` match central finite
 //!   differences of the update itself wherever the update is smooth in `Δū`.
 
+use nalgebra::Vector2;
 use proptest::prelude::*;
-use slipfront::friction::{ContactState, FrictionError, FrictionParams, RStarLaw, update, update_from};
+use slipfront::friction::{ContactState, FrictionError, FrictionParams, RStarLaw, law, update, update_from};
 
 /// Log-uniform in `[lo, hi]`.
 fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
@@ -176,6 +178,35 @@ proptest! {
         }
         prop_assume!(checked);
         prop_assert!(false, "α_t {}: {}", p.alpha_t, misses.join("; "));
+    }
+
+    #[test]
+    fn the_rates_held_on_a_branch_are_the_laws((p, state, v_t, _dt) in scenario()) {
+        // The rate form's right-hand side takes each point's rates from `law::rates_on_branch`,
+        // which shares eq. (4)'s decay and healing terms between eqs. (4) and (5). On the branch
+        // eq. (9) chooses they must be the law's own: `Λ` and `ḟ_t` of `traction_rate` (eqs.
+        // 5-8 as tensors), `d(1/R*)/dt` of `structure_rate` at that `Λ`; each to rounding of
+        // the terms it sums (1e-12 of their magnitudes).
+        let loading = law::loads(&p, &state, v_t);
+        let rates = law::rates_on_branch(&p, &state, v_t, loading);
+        let (rate, lambda) = law::traction_rate(&p, &state, Vector2::new(v_t, 0.0));
+        prop_assert_eq!(loading, lambda > 0.0);
+        // `D` may be negative where softening outruns `α_t` (random constants).
+        let d = law::denominator(&p, &state).abs();
+        let (gamma, z, mu_f) = (p.rstar_scale(), state.structure, p.mu_k * state.traction_n);
+        let healing_term = gamma * p.xi * state.sliding_ratio(&p) * law::healing(&p, z) * mu_f;
+        let lambda_scale = (p.alpha_t * v_t.abs() + healing_term) / d;
+        let rate_scale = p.alpha_t * v_t.abs() * (1.0 + p.alpha_t / d) + p.alpha_t * healing_term / d;
+        let structure_scale = gamma * (p.kappa * law::decay(&p, z) * lambda.abs() + p.xi * law::healing(&p, z));
+        let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-12 * scale;
+        prop_assert!(close(rates.plastic_multiplier, lambda, lambda_scale), "Λ {} vs {lambda}", rates.plastic_multiplier);
+        prop_assert!(close(rates.traction, rate.x, rate_scale), "ḟ_t {} vs {}", rates.traction, rate.x);
+        let structure = law::structure_rate(&p, z, lambda);
+        prop_assert!(close(rates.structure, structure, structure_scale), "d(1/R*)/dt {} vs {structure}", rates.structure);
+        // Eq. (9)'s switching function: where `D > 0`, the sign of `N` is the branch.
+        if state.traction_t != 0.0 && law::denominator(&p, &state) > 0.0 {
+            prop_assert_eq!(rates.numerator > 0.0, loading, "N = {}", rates.numerator);
+        }
     }
 }
 

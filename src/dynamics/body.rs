@@ -75,6 +75,17 @@ impl LoadAt<'_> {
             LoadAt::Several(terms) => terms.iter().map(|(pattern, g)| pattern[i] * g).sum(),
         }
     }
+
+    /// `forces_i ← f⁰_i - forces_i - offset_i` for every degree of freedom: [`Self::at`] with
+    /// the load's kind matched once, not per degree of freedom, so that the loop vectorizes.
+    pub fn minus(&self, forces: &mut [f64], offset: &[f64]) {
+        let rows = forces.iter_mut().zip(offset);
+        match self {
+            LoadAt::None => rows.for_each(|(f, o)| *f = 0.0 - *f - o),
+            LoadAt::One(pattern, g) => rows.zip(*pattern).for_each(|((f, o), p)| *f = p * g - *f - o),
+            LoadAt::Several(_) => rows.enumerate().for_each(|(i, (f, o))| *f = self.at(i) - *f - o),
+        }
+    }
 }
 
 impl LinearBody {

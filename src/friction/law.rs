@@ -81,9 +81,15 @@ fn power_slope(x: f64, exponent: f64) -> f64 {
 ///
 /// with `γ = 1` (consistent law) or `1/μ_k` (eq. 4 as printed).
 pub fn structure_rate(params: &FrictionParams, structure: f64, plastic_multiplier: f64) -> f64 {
+    structure_rate_of(params, (decay(params, structure), healing(params, structure)), plastic_multiplier)
+}
+
+/// [`structure_rate`] from its decay and healing terms at the point's `1/R*`
+/// ([`decay`], [`healing`]).
+#[inline(always)]
+pub fn structure_rate_of(params: &FrictionParams, (decay, healing): (f64, f64), plastic_multiplier: f64) -> f64 {
     let gamma = params.rstar_scale();
-    -gamma * params.kappa * decay(params, structure) * plastic_multiplier
-        + gamma * params.xi * healing(params, structure)
+    -gamma * params.kappa * decay * plastic_multiplier + gamma * params.xi * healing
 }
 
 /// `∂/∂(1/R*)` of [`structure_rate`] at fixed `Λ`:
@@ -305,26 +311,63 @@ pub fn tangential_rate_on_branch(
     v_t: f64,
     loading: bool,
 ) -> (f64, f64, f64) {
+    let rates = rates_on_branch(params, state, v_t, loading);
+    (rates.traction, rates.plastic_multiplier, rates.numerator)
+}
+
+/// A point's rates on one branch of eq. (6) ([`rates_on_branch`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BranchRates {
+    /// `ḟ_t` (Pa/s).
+    pub traction: f64,
+    /// `Λ` (m/s): `N/D` unclipped on the loading branch, 0 on the unloading one.
+    pub plastic_multiplier: f64,
+    /// `N`, eq. (9)'s switching function (Pa m/s); NaN where eq. (9) does not apply.
+    pub numerator: f64,
+    /// `d(1/R*)/dt` of eq. (4) for that `Λ` (1/s).
+    pub structure: f64,
+}
+
+/// [`tangential_rate_on_branch`] and [`structure_rate`] together, the decay and healing terms
+/// of eq. (4) evaluated once for both: what the rate form's right-hand side needs of each
+/// point held on its branch.
+#[inline(always)]
+pub fn rates_on_branch(params: &FrictionParams, state: &ContactState, v_t: f64, loading: bool) -> BranchRates {
+    let z = state.structure;
+    let at_rest = |traction, numerator| BranchRates {
+        traction,
+        plastic_multiplier: 0.0,
+        numerator,
+        structure: structure_rate(params, z, 0.0),
+    };
     if state.traction_n <= 0.0 {
-        return (0.0, 0.0, f64::NAN);
+        return at_rest(0.0, f64::NAN);
     }
     let elastic = -params.alpha_t * v_t;
     if state.traction_t == 0.0 {
-        return (elastic, 0.0, f64::NAN);
+        return at_rest(elastic, f64::NAN);
     }
-    let sigma = state.direction();
-    let z = state.structure;
+    // `t = sign f_t`, `f_t ≠ 0` here ([`ContactState::direction`] with one test, not three).
+    let sigma = 1.0f64.copysign(state.traction_t);
     let mu_f = params.mu_k * state.traction_n;
     let gamma = params.rstar_scale();
     let ratio = state.sliding_ratio(params);
-    let numer = -params.alpha_t * sigma * v_t - gamma * params.xi * ratio * healing(params, z) * mu_f;
+    let h = healing(params, z);
+    let numer = -params.alpha_t * sigma * v_t - gamma * params.xi * ratio * h * mu_f;
+    let g = decay(params, z);
     if !loading {
-        return (elastic, 0.0, numer);
+        let structure = structure_rate_of(params, (g, h), 0.0);
+        return BranchRates { traction: elastic, plastic_multiplier: 0.0, numerator: numer, structure };
     }
-    let softening = gamma * params.kappa * ratio * decay(params, z) * mu_f;
+    let softening = gamma * params.kappa * ratio * g * mu_f;
     let denom = params.alpha_t - params.r * ratio.ln() * z * mu_f - softening;
     let lambda = numer / denom;
-    (elastic - params.alpha_t * sigma * lambda, lambda, numer)
+    BranchRates {
+        traction: elastic - params.alpha_t * sigma * lambda,
+        plastic_multiplier: lambda,
+        numerator: numer,
+        structure: structure_rate_of(params, (g, h), lambda),
+    }
 }
 
 /// [`traction_rate`] for `v̄ = (v̄_t, v̄_n)`, tangential component, with partial derivatives.

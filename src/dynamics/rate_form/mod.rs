@@ -60,7 +60,7 @@ pub mod sdirk4;
 mod trial;
 pub mod tsit5;
 
-use crate::dynamics::contact::{ContactSurface, NormalBehaviour};
+use crate::dynamics::contact::{ContactPoint, ContactSurface, MainBody, NormalBehaviour};
 use crate::dynamics::system::System;
 use crate::friction::{ContactState, law};
 
@@ -187,10 +187,7 @@ impl System {
         du.copy_from_slice(v);
         // M v̇ = ḟ⁰ t - K u + Σ w Ñᵀ f_t - f_c⁰.
         self.body.stiffness.mul_vec(u, dv);
-        let load = self.body.load_at(t);
-        for (i, a) in dv.iter_mut().enumerate() {
-            *a = load.at(i) - *a - self.initial_contact_force[i];
-        }
+        self.body.load_at(t).minus(dv, &self.initial_contact_force);
         let (y_contact, rate_contact) = ((traction, structure, slip), (dtraction, dstructure, dslip));
         let mut out = (rate_contact, &mut *lambda);
         for surface in &self.contact.surfaces {
@@ -229,30 +226,41 @@ impl System {
         dv: &mut [f64],
         switching: &mut Switching,
     ) {
-        let (params, main_body) = (&surface.params, &surface.main_body);
-        let base = main_body.motion.velocity_at(t);
-        for i in surface.points.clone() {
-            let point = &self.contact.points[i];
-            point.tangential.scatter_n::<N>(point.weight * traction[i], dv);
-            let state = ContactState {
-                traction_t: traction[i],
-                traction_n: self.contact.traction_n[i],
-                structure: structure[i],
-                plastic_slip: slip[i],
-            };
-            let v_t = point.tangential.apply_n::<N>(v) - main_body.along(point, base);
-            let (rate, multiplier) = match switching {
-                Switching::ByEq9 => law::tangential_rate_and_multiplier(params, &state, v_t, 0.0),
-                Switching::Held { branches, numerator } => {
-                    let (rate, multiplier, n) = law::tangential_rate_on_branch(params, &state, v_t, branches[i]);
-                    numerator[i] = n;
-                    (rate, multiplier)
+        // A copy of the law's constants: `ln`, called between their uses, might write any memory
+        // the compiler can reach (errno), so constants read through `surface` would be loaded
+        // again, and `μ_k/μ_s` divided again, at every point.
+        let params = &surface.params.clone();
+        let (main_body, base) = (&surface.main_body, surface.main_body.motion.velocity_at(t));
+        // Every array cut to the surface's points once, so that the loops index them unchecked.
+        let range = surface.points.clone();
+        let at = SurfacePoints {
+            points: &self.contact.points[range.clone()],
+            traction_n: &self.contact.traction_n[range.clone()],
+            traction: &traction[range.clone()],
+            structure: &structure[range.clone()],
+            slip: &slip[range.clone()],
+        };
+        let (dtraction, dstructure) = (&mut dtraction[range.clone()], &mut dstructure[range.clone()]);
+        let (dslip, lambda) = (&mut dslip[range.clone()], &mut lambda[range.clone()]);
+        match switching {
+            Switching::ByEq9 => {
+                for k in 0..range.len() {
+                    let (state, v_t) = at.point::<N>(k, (main_body, base), v, dv);
+                    let (rate, multiplier) = law::tangential_rate_and_multiplier(params, &state, v_t, 0.0);
+                    (dtraction[k], dslip[k], lambda[k]) = (rate, multiplier, multiplier);
+                    dstructure[k] = law::structure_rate(params, state.structure, multiplier);
                 }
-            };
-            dtraction[i] = rate;
-            dstructure[i] = law::structure_rate(params, structure[i], multiplier);
-            dslip[i] = multiplier;
-            lambda[i] = multiplier;
+            }
+            Switching::Held { branches, numerator } => {
+                let (branches, numerator) = (&branches[range.clone()], &mut numerator[range.clone()]);
+                for k in 0..range.len() {
+                    let (state, v_t) = at.point::<N>(k, (main_body, base), v, dv);
+                    let rates = law::rates_on_branch(params, &state, v_t, branches[k]);
+                    (dtraction[k], dslip[k], lambda[k]) =
+                        (rates.traction, rates.plastic_multiplier, rates.plastic_multiplier);
+                    (dstructure[k], numerator[k]) = (rates.structure, rates.numerator);
+                }
+            }
         }
     }
 
@@ -295,5 +303,39 @@ impl System {
             dslip[i] = multiplier;
             lambda[i] = multiplier;
         }
+    }
+}
+
+/// One surface's contact points and their friction state in `y`, each cut to the surface's
+/// points.
+struct SurfacePoints<'a> {
+    points: &'a [ContactPoint],
+    traction_n: &'a [f64],
+    traction: &'a [f64],
+    structure: &'a [f64],
+    slip: &'a [f64],
+}
+
+impl SurfacePoints<'_> {
+    /// Point `k`, reading `N` terms: its nodal force `w Ñᵀ f_t` into `dv`, its friction state,
+    /// and its relative sliding velocity `v̄_t = Ñ v - v_base` for the main body's velocity
+    /// `base`.
+    #[inline(always)]
+    fn point<const N: usize>(
+        &self,
+        k: usize,
+        (main_body, base): (&MainBody, [f64; 2]),
+        v: &[f64],
+        dv: &mut [f64],
+    ) -> (ContactState, f64) {
+        let point = &self.points[k];
+        point.tangential.scatter_n::<N>(point.weight * self.traction[k], dv);
+        let state = ContactState {
+            traction_t: self.traction[k],
+            traction_n: self.traction_n[k],
+            structure: self.structure[k],
+            plastic_slip: self.slip[k],
+        };
+        (state, point.tangential.apply_n::<N>(v) - main_body.along(point, base))
     }
 }
