@@ -322,7 +322,7 @@ pub struct BranchRates {
     pub traction: f64,
     /// `Λ` (m/s): `N/D` unclipped on the loading branch, 0 on the unloading one.
     pub plastic_multiplier: f64,
-    /// `N`, eq. (9)'s switching function (Pa m/s); NaN where eq. (9) does not apply.
+    /// `N`, eq. (9)'s switching function (Pa/s); NaN where eq. (9) does not apply.
     pub numerator: f64,
     /// `d(1/R*)/dt` of eq. (4) for that `Λ` (1/s).
     pub structure: f64,
