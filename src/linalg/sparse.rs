@@ -17,11 +17,17 @@ use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Par, Side};
 
-/// Symmetric matrix stored with both triangles in compressed sparse columns.
+use crate::linalg::dense::DenseColumns;
+
+/// Symmetric matrix stored with both triangles in compressed sparse columns; a small one also
+/// in dense columns, for its product ([`DenseColumns`]).
 #[derive(Debug, Clone)]
 pub struct SymmetricMatrix {
     pattern: SymbolicSparseColMat<usize>,
     values: Vec<f64>,
+    /// The same values in dense columns, where that product is cheaper; dropped when the
+    /// values are refilled ([`Self::values_mut`]).
+    dense: Option<DenseColumns>,
 }
 
 impl SymmetricMatrix {
@@ -49,7 +55,9 @@ impl SymmetricMatrix {
             counts[j + 1] += counts[j];
         }
         let pattern = SymbolicSparseColMat::new_checked(n, n, counts, None, row_idx);
-        Self { pattern, values }
+        let mut matrix = Self { pattern, values, dense: None };
+        matrix.dense = DenseColumns::of(n, matrix.values.len(), matrix.entries());
+        matrix
     }
 
     /// Dimension.
@@ -62,8 +70,9 @@ impl SymmetricMatrix {
         &self.values
     }
 
-    /// Mutable stored values, in pattern order.
+    /// Mutable stored values, in pattern order. The product is then the sparse one.
     pub fn values_mut(&mut self) -> &mut [f64] {
+        self.dense = None;
         &mut self.values
     }
 
@@ -81,11 +90,20 @@ impl SymmetricMatrix {
         (0..self.size()).flat_map(move |j| (col_ptr[j]..col_ptr[j + 1]).map(move |k| (row_idx[k], j, self.values[k])))
     }
 
-    /// `y = A x`, summed column by column. (A gather by rows, reading column `i` as row `i`,
-    /// took the same 9 % of the paper case's profile, and where assembly leaves the two
-    /// triangles different in their last bits, as on a rotated mesh, it computes `Aᵀ x`: a
-    /// rounding of its own.)
+    /// `y = A x`, summed column by column: from the dense columns where the matrix has them
+    /// (the same sums to the bit, [`DenseColumns`]), else from the pattern.
     pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
+        match &self.dense {
+            Some(dense) => dense.mul_vec(x, y),
+            None => self.sparse_mul_vec(x, y),
+        }
+    }
+
+    /// `y = A x` from the pattern, column by column. (A gather by rows, reading column `i` as
+    /// row `i`, took the same 9 % of the paper case's profile, and where assembly leaves the
+    /// two triangles different in their last bits, as on a rotated mesh, it computes `Aᵀ x`: a
+    /// rounding of its own.)
+    pub fn sparse_mul_vec(&self, x: &[f64], y: &mut [f64]) {
         y.iter_mut().for_each(|v| *v = 0.0);
         let col_ptr = self.pattern.col_ptr();
         let row_idx = self.pattern.row_idx();
