@@ -136,13 +136,31 @@ fn stage_sum<const S: usize>(w: &[f64; S], k: &[&[f64]; S], j: usize) -> f64 {
 }
 
 /// `out = y + h Σ_s weights_s stages_s` over the first `S` stages: one pass over the
-/// components, each sum kept in a register ([`stage_sum`]).
-#[inline(always)]
-fn advance<const S: usize>((weights, stages, y, h): (&[f64], &[Vec<f64>], &[f64], f64), out: &mut [f64]) {
-    let len = out.len();
-    let (w, k) = columns::<S>(weights, stages, len);
-    for (j, (out, y)) in out.iter_mut().zip(&y[..len]).enumerate() {
-        *out = y + h * stage_sum(&w, &k, j);
+/// components, each sum kept in a register ([`stage_sum`]), compiled for the widest vectors
+/// the processor has (`pulp`'s runtime dispatch, as [`crate::linalg::stencil`] does). Every
+/// width gives the same sums to the bit: each component adds its terms in the same order,
+/// and no multiply and add are fused.
+fn advance<const S: usize>(stage: (&[f64], &[Vec<f64>], &[f64], f64), out: &mut [f64]) {
+    pulp::Arch::new().dispatch(Advance::<S> { stage, out });
+}
+
+/// [`advance`] for `pulp`'s dispatch.
+struct Advance<'a, const S: usize> {
+    stage: (&'a [f64], &'a [Vec<f64>], &'a [f64], f64),
+    out: &'a mut [f64],
+}
+
+impl<const S: usize> pulp::WithSimd for Advance<'_, S> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<V: pulp::Simd>(self, _: V) {
+        let (weights, stages, y, h) = self.stage;
+        let len = self.out.len();
+        let (w, k) = columns::<S>(weights, stages, len);
+        for (j, (out, y)) in self.out.iter_mut().zip(&y[..len]).enumerate() {
+            *out = y + h * stage_sum(&w, &k, j);
+        }
     }
 }
 
@@ -269,6 +287,49 @@ mod tests {
             rate.copy_from_slice(pair.solution_rate());
         }
         (y[0] - 1.0_f64.cos()).abs().max((y[1] + 1.0_f64.sin()).abs())
+    }
+
+    /// The stage sums compiled for 256-bit vectors, where this processor has them, are the
+    /// scalar ones to the bit, for every stage and a length that is no multiple of the lanes.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn the_stage_sums_are_the_same_at_every_vector_width() {
+        use pulp::WithSimd;
+        let Some(v3) = pulp::x86::V3::try_new() else {
+            eprintln!("SKIPPED: this processor has no AVX2, so only the scalar sums run");
+            return;
+        };
+        let len = 103;
+        // Values over 600 orders of magnitude and both signs, from a linear congruential sequence.
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            let unit = (state >> 11) as f64 / (1u64 << 53) as f64;
+            (unit - 0.5) * 10f64.powi(((state >> 3) % 600) as i32 - 300)
+        };
+        let stages: Vec<Vec<f64>> = (0..7).map(|_| (0..len).map(|_| next()).collect()).collect();
+        let y: Vec<f64> = (0..len).map(|_| next()).collect();
+        for (i, row) in A.iter().enumerate() {
+            let stage = (&row[..=i], &stages[..], &y[..], 0.0173);
+            let (mut scalar, mut wide) = (vec![f64::NAN; len], vec![f64::NAN; len]);
+            macro_rules! both {
+                ($s:literal) => {{
+                    Advance::<$s> { stage, out: &mut scalar }.with_simd(pulp::Scalar::new());
+                    pulp::Simd::vectorize(v3, Advance::<$s> { stage, out: &mut wide });
+                }};
+            }
+            match i {
+                0 => both!(1),
+                1 => both!(2),
+                2 => both!(3),
+                3 => both!(4),
+                4 => both!(5),
+                _ => both!(6),
+            }
+            for (j, (s, w)) in scalar.iter().zip(&wide).enumerate() {
+                assert_eq!(s.to_bits(), w.to_bits(), "stage {} component {j}: {s} against {w}", i + 2);
+            }
+        }
     }
 
     #[test]
