@@ -319,3 +319,88 @@ fn restarts_agree_where_the_solve_once_split() {
         }
     }
 }
+
+/// `L` points, lane by lane, each one of `kinds`: 0 as drawn, 1 without normal traction, 2 and
+/// 3 with `f_t = +0` and `-0`, 4 with a negative normal traction.
+fn lanes<const L: usize>(states: [(ContactState, f64, bool, u8); L]) -> law::BranchPoints<L> {
+    let mut points = law::BranchPoints {
+        traction_t: [0.0; L],
+        traction_n: [0.0; L],
+        structure: [0.0; L],
+        v_t: [0.0; L],
+        loading: [false; L],
+    };
+    for (l, (state, v_t, loading, kind)) in states.into_iter().enumerate() {
+        let (traction_t, traction_n) = match kind {
+            1 => (state.traction_t, 0.0),
+            2 => (0.0, state.traction_n),
+            3 => (-0.0, state.traction_n),
+            4 => (state.traction_t, -state.traction_n),
+            _ => (state.traction_t, state.traction_n),
+        };
+        (points.traction_t[l], points.traction_n[l], points.structure[l]) = (traction_t, traction_n, state.structure);
+        (points.v_t[l], points.loading[l]) = (v_t, loading);
+    }
+    points
+}
+
+/// `law::rates_on_branches` of four lanes at the vector width `pulp` is given.
+struct FourLanes<'a>(&'a FrictionParams, law::BranchPoints<4>);
+
+impl pulp::WithSimd for FourLanes<'_> {
+    type Output = law::BranchRateLanes<4>;
+
+    #[inline(always)]
+    fn with_simd<V: pulp::Simd>(self, _: V) -> Self::Output {
+        law::rates_on_branches(self.0, &self.1)
+    }
+}
+
+fn lane_bits(rates: &law::BranchRateLanes<4>) -> [[u64; 4]; 4] {
+    [rates.traction, rates.plastic_multiplier, rates.numerator, rates.structure].map(|lane| lane.map(f64::to_bits))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+
+    #[test]
+    fn four_points_at_once_are_each_point_alone_to_the_bit(
+        (p, first, v_first, _dt) in scenario(),
+        others in proptest::array::uniform3(scenario()),
+        loading in proptest::array::uniform4(any::<bool>()),
+        kinds in proptest::array::uniform4(0u8..8),
+    ) {
+        // The rate form's right-hand side takes four points at a time through the law, in
+        // vector lanes with each branch chosen by a select; each lane must give what the law
+        // gives that point alone (`rates_on_branch`), at rest, with `f_t = ±0`, on either
+        // branch and past its switch alike, and so must the scalar and the AVX2 compilations.
+        let states = [(first, v_first), (others[0].1, others[0].2), (others[1].1, others[1].2), (others[2].1, others[2].2)];
+        let points = lanes(std::array::from_fn(|l| (states[l].0, states[l].1, loading[l], kinds[l])));
+        let together = law::rates_on_branches(&p, &points);
+        for l in 0..4 {
+            let state = ContactState {
+                traction_t: points.traction_t[l],
+                traction_n: points.traction_n[l],
+                structure: points.structure[l],
+                plastic_slip: 0.0,
+            };
+            let alone = law::rates_on_branch(&p, &state, points.v_t[l], points.loading[l]);
+            let pairs = [
+                (together.traction[l], alone.traction),
+                (together.plastic_multiplier[l], alone.plastic_multiplier),
+                (together.numerator[l], alone.numerator),
+                (together.structure[l], alone.structure),
+            ];
+            for (a, b) in pairs {
+                prop_assert_eq!(a.to_bits(), b.to_bits(), "lane {} ({:?}): {} vs {}", l, state, a, b);
+            }
+        }
+        let scalar = pulp::WithSimd::with_simd(FourLanes(&p, points), pulp::Scalar::new());
+        prop_assert_eq!(lane_bits(&scalar), lane_bits(&together));
+        #[cfg(target_arch = "x86_64")]
+        if let Some(v3) = pulp::x86::V3::try_new() {
+            let wide = pulp::Simd::vectorize(v3, FourLanes(&p, points));
+            prop_assert_eq!(lane_bits(&wide), lane_bits(&together));
+        }
+    }
+}

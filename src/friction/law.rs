@@ -330,44 +330,103 @@ pub struct BranchRates {
 
 /// [`tangential_rate_on_branch`] and [`structure_rate`] together, the decay and healing terms
 /// of eq. (4) evaluated once for both: what the rate form's right-hand side needs of each
-/// point held on its branch.
+/// point held on its branch ([`rates_on_branches`] for one point).
 #[inline(always)]
 pub fn rates_on_branch(params: &FrictionParams, state: &ContactState, v_t: f64, loading: bool) -> BranchRates {
-    let z = state.structure;
-    let at_rest = |traction, numerator| BranchRates {
-        traction,
-        plastic_multiplier: 0.0,
-        numerator,
-        structure: structure_rate(params, z, 0.0),
+    let points = BranchPoints {
+        traction_t: [state.traction_t],
+        traction_n: [state.traction_n],
+        structure: [state.structure],
+        v_t: [v_t],
+        loading: [loading],
     };
-    if state.traction_n <= 0.0 {
-        return at_rest(0.0, f64::NAN);
-    }
-    let elastic = -params.alpha_t * v_t;
-    if state.traction_t == 0.0 {
-        return at_rest(elastic, f64::NAN);
-    }
-    // `t = sign f_t`, `f_t ≠ 0` here ([`ContactState::direction`] with one test, not three).
-    let sigma = 1.0f64.copysign(state.traction_t);
-    let mu_f = params.mu_k * state.traction_n;
-    let gamma = params.rstar_scale();
-    let ratio = state.sliding_ratio(params);
-    let h = healing(params, z);
-    let numer = -params.alpha_t * sigma * v_t - gamma * params.xi * ratio * h * mu_f;
-    let g = decay(params, z);
-    if !loading {
-        let structure = structure_rate_of(params, (g, h), 0.0);
-        return BranchRates { traction: elastic, plastic_multiplier: 0.0, numerator: numer, structure };
-    }
-    let softening = gamma * params.kappa * ratio * g * mu_f;
-    let denom = params.alpha_t - params.r * ratio.ln() * z * mu_f - softening;
-    let lambda = numer / denom;
+    let rates = rates_on_branches(params, &points);
     BranchRates {
-        traction: elastic - params.alpha_t * sigma * lambda,
-        plastic_multiplier: lambda,
-        numerator: numer,
-        structure: structure_rate_of(params, (g, h), lambda),
+        traction: rates.traction[0],
+        plastic_multiplier: rates.plastic_multiplier[0],
+        numerator: rates.numerator[0],
+        structure: rates.structure[0],
     }
+}
+
+/// `L` points, lane by lane: each one's friction state, relative sliding velocity `v̄_t` (with
+/// `v̄_n = 0`) and branch of eq. (6) (`true`: loading). The input of [`rates_on_branches`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BranchPoints<const L: usize> {
+    /// `f_t` (Pa).
+    pub traction_t: [f64; L],
+    /// `f_n` (Pa); a lane with `f_n ≤ 0` transmits nothing.
+    pub traction_n: [f64; L],
+    /// `1/R*`.
+    pub structure: [f64; L],
+    /// `v̄_t` (m/s).
+    pub v_t: [f64; L],
+    /// The branch each point is held on.
+    pub loading: [bool; L],
+}
+
+/// [`BranchRates`] of `L` points, lane by lane.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BranchRateLanes<const L: usize> {
+    /// `ḟ_t` (Pa/s).
+    pub traction: [f64; L],
+    /// `Λ` (m/s).
+    pub plastic_multiplier: [f64; L],
+    /// `N`, eq. (9)'s switching function (Pa/s); NaN where eq. (9) does not apply.
+    pub numerator: [f64; L],
+    /// `d(1/R*)/dt` of eq. (4) (1/s).
+    pub structure: [f64; L],
+}
+
+/// Each point's rates on its branch of eq. (6), continued past eq. (9)'s switch
+/// ([`tangential_rate_on_branch`]), and `d(1/R*)/dt` of eq. (4) for its `Λ`, for `L` points at
+/// once. Every lane computes the same operations in the same order, its branches chosen by
+/// selects, so that the lanes compile to vector instructions: `ḟ_t = -α_t v̄_t` (unloading, or
+/// `f_t = 0`) or `-α_t v̄_t - α_t t Λ` (loading) or 0 (`f_n ≤ 0`); `Λ = N/D` of eq. (5) on the
+/// loading branch, 0 elsewhere; `N` NaN where eq. (9) does not apply. `ln R` is taken only in
+/// the lanes that load. Each lane's result is the same to the bit whatever `L`.
+#[inline(always)]
+pub fn rates_on_branches<const L: usize>(params: &FrictionParams, at: &BranchPoints<L>) -> BranchRateLanes<L> {
+    let (alpha_t, gamma) = (params.alpha_t, params.rstar_scale());
+    // Eq. (4)'s terms first, lane by lane: `max(x, 0)^e` branches on its exponent.
+    let decays: [f64; L] = std::array::from_fn(|l| decay(params, at.structure[l]));
+    let healings: [f64; L] = std::array::from_fn(|l| healing(params, at.structure[l]));
+    let [mut sigma, mut mu_f, mut ratio, mut numer, mut log_ratio] = [[0.0; L]; 5];
+    let (mut at_rest, mut applies, mut loads) = ([false; L], [false; L], [false; L]);
+    for l in 0..L {
+        let (f_t, f_n, z) = (at.traction_t[l], at.traction_n[l], at.structure[l]);
+        // `t = sign f_t`; where `f_t = 0` eq. (9) does not apply and `t` is not used.
+        sigma[l] = 1.0f64.copysign(f_t);
+        mu_f[l] = params.mu_k * f_n;
+        ratio[l] =
+            ContactState { traction_t: f_t, traction_n: f_n, structure: z, plastic_slip: 0.0 }.sliding_ratio(params);
+        numer[l] = -alpha_t * sigma[l] * at.v_t[l] - gamma * params.xi * ratio[l] * healings[l] * mu_f[l];
+        // Eq. (9) applies where the normal traction is positive and `f_t ≠ 0`.
+        at_rest[l] = f_n <= 0.0;
+        applies[l] = !at_rest[l] & (f_t != 0.0);
+        loads[l] = applies[l] & at.loading[l];
+    }
+    for l in 0..L {
+        if loads[l] {
+            log_ratio[l] = ratio[l].ln();
+        }
+    }
+    let mut out =
+        BranchRateLanes { traction: [0.0; L], plastic_multiplier: [0.0; L], numerator: [0.0; L], structure: [0.0; L] };
+    for l in 0..L {
+        let softening = gamma * params.kappa * ratio[l] * decays[l] * mu_f[l];
+        let denom = alpha_t - params.r * log_ratio[l] * at.structure[l] * mu_f[l] - softening;
+        let quotient = numer[l] / denom;
+        let lambda = if loads[l] { quotient } else { 0.0 };
+        let elastic = -alpha_t * at.v_t[l];
+        let loaded = elastic - alpha_t * sigma[l] * lambda;
+        let held = if loads[l] { loaded } else { elastic };
+        out.traction[l] = if at_rest[l] { 0.0 } else { held };
+        out.plastic_multiplier[l] = lambda;
+        out.numerator[l] = if applies[l] { numer[l] } else { f64::NAN };
+        out.structure[l] = structure_rate_of(params, (decays[l], healings[l]), lambda);
+    }
+    out
 }
 
 /// [`traction_rate`] for `v̄ = (v̄_t, v̄_n)`, tangential component, with partial derivatives.

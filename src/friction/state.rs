@@ -35,12 +35,12 @@ impl ContactState {
 
     /// Normal sliding ratio `R = |f_t| R* / (μ_k f_n)`: eq. (3) solved for `R`.
     /// A point without normal traction has `R = 0` (it carries no traction).
+    /// The quotient is taken either way and then chosen, so that lanes of points compile to
+    /// vector instructions ([`crate::friction::law::rates_on_branches`]).
+    #[inline(always)]
     pub fn sliding_ratio(&self, params: &FrictionParams) -> f64 {
-        if self.traction_n > 0.0 {
-            self.traction_t.abs() / (params.mu_k * self.traction_n * self.structure)
-        } else {
-            0.0
-        }
+        let ratio = self.traction_t.abs() / (params.mu_k * self.traction_n * self.structure);
+        if self.traction_n > 0.0 { ratio } else { 0.0 }
     }
 
     /// Friction coefficient of the current superloading surface, `μ_k / R*` (eq. 2).
