@@ -44,17 +44,6 @@ impl Projection {
         }
     }
 
-    /// [`Self::apply`] for a projection of `N` terms (padded to it, [`Self::padded`]), the
-    /// loop unrolled: the rate form's right-hand side reads every point this way.
-    #[inline(always)]
-    pub fn apply_n<const N: usize>(&self, field: &[f64]) -> f64 {
-        let mut sum = self.factors[0] * field[self.dofs[0]];
-        for k in 1..N {
-            sum += self.factors[k] * field[self.dofs[k]];
-        }
-        sum
-    }
-
     /// `forces[d_k] += scale · c_k`: the transpose of [`Self::apply`].
     #[inline]
     pub fn scatter(&self, scale: f64, forces: &mut [f64]) {
@@ -63,12 +52,21 @@ impl Projection {
         }
     }
 
-    /// [`Self::scatter`] for `N` terms, as [`Self::apply_n`].
+    /// [`Self::scatter`] of `scale` into `forces` and [`Self::apply`] of `field` for a
+    /// projection of `N` terms (padded to it, [`Self::padded`]), in one pass over the terms,
+    /// the loop unrolled: each index is checked once, `forces` cut to `field`'s length. The
+    /// same sums as the two apart. The rate form's right-hand side reads every point this way.
     #[inline(always)]
-    pub fn scatter_n<const N: usize>(&self, scale: f64, forces: &mut [f64]) {
+    pub fn scatter_apply_n<const N: usize>(&self, scale: f64, forces: &mut [f64], field: &[f64]) -> f64 {
+        let forces = &mut forces[..field.len()];
+        let mut sum = 0.0;
         for k in 0..N {
-            forces[self.dofs[k]] += scale * self.factors[k];
+            let (dof, factor) = (self.dofs[k], self.factors[k]);
+            let term = factor * field[dof];
+            sum = if k == 0 { term } else { sum + term };
+            forces[dof] += scale * factor;
         }
+        sum
     }
 
     /// Number of terms.

@@ -46,6 +46,10 @@
 //! crossing (found by the Illinois variant of regula falsi on `Λ - threshold` with fifth-order
 //! steps from the step's start), so that a frame lies on every onset and every end.
 
+/// How many contact points held on their branches go through the friction law at once
+/// ([`law::rates_on_branches`]): the lanes of the widest vectors of `f64` (AVX2).
+const LANES: usize = 4;
+
 /// How the right-hand side chooses each point's branch of eq. (6).
 enum Switching<'a> {
     /// By eq. (9) at the point's state, at every evaluation.
@@ -173,7 +177,16 @@ impl System {
         }
     }
 
+    /// The right-hand side switched as `switching` says, compiled for the widest vectors the
+    /// processor has (`pulp`'s runtime dispatch), for the friction law's lanes
+    /// ([`law::rates_on_branches`]); every width gives the same rates to the bit.
     fn rate_form_switched(&self, t: f64, y: &[f64], rate: &mut [f64], lambda: &mut [f64], switching: &mut Switching) {
+        pulp::Arch::new().dispatch(RightHandSide { system: self, t, y, rate, lambda, switching });
+    }
+
+    /// [`Self::rate_form_switched`] at one vector width.
+    #[inline(always)]
+    fn rate_form_at_width(&self, t: f64, y: &[f64], rate: &mut [f64], lambda: &mut [f64], switching: &mut Switching) {
         let n = self.body.dofs();
         let m = self.contact.points.len();
         let (u, rest) = y.split_at(n);
@@ -253,12 +266,30 @@ impl System {
             }
             Switching::Held { branches, numerator } => {
                 let (branches, numerator) = (&branches[range.clone()], &mut numerator[range.clone()]);
-                for k in 0..range.len() {
-                    let (state, v_t) = at.point::<N>(k, (main_body, base), v, dv);
-                    let rates = law::rates_on_branch(params, &state, v_t, branches[k]);
-                    (dtraction[k], dslip[k], lambda[k]) =
-                        (rates.traction, rates.plastic_multiplier, rates.plastic_multiplier);
-                    (dstructure[k], numerator[k]) = (rates.structure, rates.numerator);
+                // `LANES` points at a time through the law, lane by lane; a last, partial group
+                // padded with points that transmit nothing (`f_n = 0`), their rates unused.
+                for first in (0..range.len()).step_by(LANES) {
+                    let count = LANES.min(range.len() - first);
+                    let mut points = law::BranchPoints {
+                        traction_t: [0.0; LANES],
+                        traction_n: [0.0; LANES],
+                        structure: [1.0; LANES],
+                        v_t: [0.0; LANES],
+                        loading: [false; LANES],
+                    };
+                    for l in 0..count {
+                        let k = first + l;
+                        let (state, v_t) = at.point::<N>(k, (main_body, base), v, dv);
+                        (points.traction_t[l], points.traction_n[l]) = (state.traction_t, state.traction_n);
+                        (points.structure[l], points.v_t[l], points.loading[l]) = (state.structure, v_t, branches[k]);
+                    }
+                    let rates = law::rates_on_branches(params, &points);
+                    for l in 0..count {
+                        let k = first + l;
+                        (dtraction[k], dslip[k], lambda[k]) =
+                            (rates.traction[l], rates.plastic_multiplier[l], rates.plastic_multiplier[l]);
+                        (dstructure[k], numerator[k]) = (rates.structure[l], rates.numerator[l]);
+                    }
                 }
             }
         }
@@ -306,6 +337,25 @@ impl System {
     }
 }
 
+/// [`System::rate_form_switched`]'s arguments, for `pulp`'s dispatch.
+struct RightHandSide<'a, 'b> {
+    system: &'a System,
+    t: f64,
+    y: &'a [f64],
+    rate: &'a mut [f64],
+    lambda: &'a mut [f64],
+    switching: &'a mut Switching<'b>,
+}
+
+impl pulp::WithSimd for RightHandSide<'_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<V: pulp::Simd>(self, _: V) {
+        self.system.rate_form_at_width(self.t, self.y, self.rate, self.lambda, self.switching);
+    }
+}
+
 /// One surface's contact points and their friction state in `y`, each cut to the surface's
 /// points.
 struct SurfacePoints<'a> {
@@ -329,13 +379,13 @@ impl SurfacePoints<'_> {
         dv: &mut [f64],
     ) -> (ContactState, f64) {
         let point = &self.points[k];
-        point.tangential.scatter_n::<N>(point.weight * self.traction[k], dv);
+        let v_point = point.tangential.scatter_apply_n::<N>(point.weight * self.traction[k], dv, v);
         let state = ContactState {
             traction_t: self.traction[k],
             traction_n: self.traction_n[k],
             structure: self.structure[k],
             plastic_slip: self.slip[k],
         };
-        (state, point.tangential.apply_n::<N>(v) - main_body.along(point, base))
+        (state, v_point - main_body.along(point, base))
     }
 }
