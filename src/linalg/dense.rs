@@ -9,11 +9,13 @@
 //!
 //! **The same result to the bit as the sparse product** ([`super::sparse::SymmetricMatrix`]
 //! sums column by column): each `y_i` is `0 + a_i0 x_0 + a_i1 x_1 + …` in the order of the
-//! columns in both. The dense form also adds what the sparse one skips, the pattern's zeros and
-//! the columns with `x_j = 0`, each term `±0`; adding `±0` leaves every sum as it was: a sum
-//! that starts at `+0` can only become `-0` by adding `-0` to `-0`, so it is never `-0`, and
-//! `y + (±0) = y` for every other `y` (round to nearest). That holds for finite `x` and `A`; a
+//! columns in both. The dense form also adds what the sparse one skips inside each block's band
+//! of columns, the pattern's zeros and the columns with `x_j = 0`, each term `±0`; adding `±0`
+//! leaves every sum as it was: a sum that starts at `+0` can only become `-0` by adding `-0` to
+//! `-0`, so it is never `-0`, and `y + (±0) = y` for every other `y` (round to nearest). That holds for finite `x` and `A`; a
 //! state that is not finite is rejected by every integrator whatever its product.
+
+use std::ops::Range;
 
 /// Rows per block: eight `f64`, two AVX2 registers of accumulators (four SSE2 ones).
 const BLOCK: usize = 8;
@@ -27,11 +29,14 @@ const MAX_SLOTS_PER_ENTRY: usize = 8;
 
 /// An `n × n` matrix in blocks of [`BLOCK`] rows (`n` rounded up, the padding zero), each
 /// block stored column after column: the block of rows `8b … 8b + 7` of column `j` is
-/// `values[b n + j]`.
+/// `values[b n + j]`. `columns[b]` is the range of columns from block `b`'s first column with
+/// a stored entry to its last; outside it the block is zero and the product skips it (a
+/// banded matrix's band).
 #[derive(Debug, Clone)]
 pub struct DenseColumns {
     n: usize,
     values: Vec<[f64; BLOCK]>,
+    columns: Vec<Range<usize>>,
 }
 
 impl DenseColumns {
@@ -44,10 +49,17 @@ impl DenseColumns {
             return None;
         }
         let mut values = vec![[0.0; BLOCK]; blocks * n];
+        let mut columns = vec![n..0; blocks];
         for (i, j, value) in entries {
             values[i / BLOCK * n + j][i % BLOCK] = value;
+            let span = &mut columns[i / BLOCK];
+            *span = span.start.min(j)..span.end.max(j + 1);
         }
-        Some(Self { n, values })
+        for span in &mut columns {
+            // A block without stored entries: no column.
+            span.start = span.start.min(span.end);
+        }
+        Some(Self { n, values, columns })
     }
 
     /// `y = A x`, column by column in the order of the columns, compiled for the widest
@@ -72,9 +84,10 @@ impl pulp::WithSimd for Product<'_> {
     fn with_simd<V: pulp::Simd>(self, _: V) {
         let Self { a, x, y } = self;
         let x = &x[..a.n];
-        for (block, y) in a.values.chunks_exact(a.n).zip(y[..a.n].chunks_mut(BLOCK)) {
+        let blocks = a.values.chunks_exact(a.n).zip(&a.columns);
+        for ((block, span), y) in blocks.zip(y[..a.n].chunks_mut(BLOCK)) {
             let mut sum = [0.0_f64; BLOCK];
-            for (column, &xj) in block.iter().zip(x) {
+            for (column, &xj) in block[span.clone()].iter().zip(&x[span.clone()]) {
                 for (s, a) in sum.iter_mut().zip(column) {
                     *s += a * xj;
                 }
@@ -158,6 +171,16 @@ mod tests {
         assert!(DenseColumns::of(22, 64, none.clone()).is_none());
         assert!(DenseColumns::of(65, 65 * 65, none.clone()).is_none());
         assert!(DenseColumns::of(0, 0, none).is_none());
+    }
+
+    /// Each block reads the columns of its band only: a tridiagonal 16 × 16 matrix's blocks
+    /// of rows 0–7 and 8–15 read columns 0–8 and 7–15.
+    #[test]
+    fn each_block_reads_its_band() {
+        let tridiagonal = (0..16_usize).flat_map(|i| [i.checked_sub(1), Some(i), Some(i + 1)].map(|j| (i, j)));
+        let entries: Vec<_> = tridiagonal.filter_map(|(i, j)| j.filter(|&j| j < 16).map(|j| (i, j, 1.0))).collect();
+        let dense = DenseColumns::of(16, entries.len(), entries.into_iter()).expect("kept dense");
+        assert_eq!(dense.columns, [0..9, 7..16]);
     }
 
     /// Values refilled in place are the ones multiplied.

@@ -236,11 +236,7 @@ impl Tsit5 {
         // Every component checked, without an early exit, so that the check compiles to vector
         // instructions.
         let finite = self.work.iter().chain(&self.stages[6]).fold(true, |finite, x| finite & x.is_finite());
-        if error.is_finite() && finite {
-            error
-        } else {
-            f64::INFINITY
-        }
+        if error.is_finite() && finite { error } else { f64::INFINITY }
     }
 
     /// Component `j` of the last [`Self::step`]'s dense output, `y_j + h Σ_i b_i(θ) k_ij`, for
