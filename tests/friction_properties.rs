@@ -323,13 +323,7 @@ fn restarts_agree_where_the_solve_once_split() {
 /// `L` points, lane by lane, each one of `kinds`: 0 as drawn, 1 without normal traction, 2 and
 /// 3 with `f_t = +0` and `-0`, 4 with a negative normal traction.
 fn lanes<const L: usize>(states: [(ContactState, f64, bool, u8); L]) -> law::BranchPoints<L> {
-    let mut points = law::BranchPoints {
-        traction_t: [0.0; L],
-        traction_n: [0.0; L],
-        structure: [0.0; L],
-        v_t: [0.0; L],
-        loading: [false; L],
-    };
+    let mut points = law::BranchPoints::at_rest();
     for (l, (state, v_t, loading, kind)) in states.into_iter().enumerate() {
         let (traction_t, traction_n) = match kind {
             1 => (state.traction_t, 0.0),

@@ -365,6 +365,14 @@ pub struct BranchPoints<const L: usize> {
     pub loading: [bool; L],
 }
 
+impl<const L: usize> BranchPoints<L> {
+    /// `L` points that transmit nothing (`f_n = 0`, `1/R* = 1`, at rest): where a group of
+    /// points is padded to `L`.
+    pub fn at_rest() -> Self {
+        Self { traction_t: [0.0; L], traction_n: [0.0; L], structure: [1.0; L], v_t: [0.0; L], loading: [false; L] }
+    }
+}
+
 /// [`BranchRates`] of `L` points, lane by lane.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BranchRateLanes<const L: usize> {

@@ -270,13 +270,7 @@ impl System {
                 // padded with points that transmit nothing (`f_n = 0`), their rates unused.
                 for first in (0..range.len()).step_by(LANES) {
                     let count = LANES.min(range.len() - first);
-                    let mut points = law::BranchPoints {
-                        traction_t: [0.0; LANES],
-                        traction_n: [0.0; LANES],
-                        structure: [1.0; LANES],
-                        v_t: [0.0; LANES],
-                        loading: [false; LANES],
-                    };
+                    let mut points = law::BranchPoints::<LANES>::at_rest();
                     for l in 0..count {
                         let k = first + l;
                         let (state, v_t) = at.point::<N>(k, (main_body, base), v, dv);
