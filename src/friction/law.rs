@@ -9,6 +9,7 @@
 
 use nalgebra::{Matrix2, Vector2};
 
+use crate::friction::ln::ln_lanes;
 use crate::friction::params::FrictionParams;
 use crate::friction::state::ContactState;
 
@@ -399,7 +400,7 @@ pub fn rates_on_branches<const L: usize>(params: &FrictionParams, at: &BranchPoi
     // Eq. (4)'s terms first, lane by lane: `max(x, 0)^e` branches on its exponent.
     let decays: [f64; L] = std::array::from_fn(|l| decay(params, at.structure[l]));
     let healings: [f64; L] = std::array::from_fn(|l| healing(params, at.structure[l]));
-    let [mut sigma, mut mu_f, mut ratio, mut numer, mut log_ratio] = [[0.0; L]; 5];
+    let [mut sigma, mut mu_f, mut ratio, mut numer] = [[0.0; L]; 4];
     let (mut at_rest, mut applies, mut loads) = ([false; L], [false; L], [false; L]);
     for l in 0..L {
         let (f_t, f_n, z) = (at.traction_t[l], at.traction_n[l], at.structure[l]);
@@ -414,11 +415,8 @@ pub fn rates_on_branches<const L: usize>(params: &FrictionParams, at: &BranchPoi
         applies[l] = !at_rest[l] & (f_t != 0.0);
         loads[l] = applies[l] & at.loading[l];
     }
-    for l in 0..L {
-        if loads[l] {
-            log_ratio[l] = ratio[l].ln();
-        }
-    }
+    // `ln 1 = 0` where a lane does not load.
+    let log_ratio: [f64; L] = ln_lanes(std::array::from_fn(|l| if loads[l] { ratio[l] } else { 1.0 }));
     let mut out =
         BranchRateLanes { traction: [0.0; L], plastic_multiplier: [0.0; L], numerator: [0.0; L], structure: [0.0; L] };
     for l in 0..L {
