@@ -8,7 +8,7 @@
 //! taken in two parts. Its worst error is about 0.52 ulp (the routine's own analysis). The
 //! constants are those of glibc 2.36's `libm`, and the multiply-adds are fused where its FMA
 //! build fuses them, so each value is that `log`'s to the bit: `tests/ln_lanes.rs` checks
-//! every lane against `f64::ln` on five million values, and the shipped cases' catalogs did
+//! every lane against `f64::ln` on four million values, and the shipped cases' catalogs did
 //! not change. Four lanes at once in AVX2 made the paper case's run 0.91 of its CPU time
 //! (docs/performance.md).
 
