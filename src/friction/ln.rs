@@ -192,12 +192,12 @@ pub fn ln_lanes<const L: usize>(x: [f64; L]) -> [f64; L] {
         for (values, chunk) in out.chunks_exact_mut(4).zip(&mut lanes) {
             let four = [chunk[0], chunk[1], chunk[2], chunk[3]];
             // SAFETY: the processor has AVX2 and FMA (checked above).
-            values.copy_from_slice(&unsafe { avx2::ln4(four) });
+            values.copy_from_slice(&unsafe { ln4(four) });
         }
         let done = L - lanes.remainder().len();
         for (value, &x) in out[done..].iter_mut().zip(lanes.remainder()) {
             // SAFETY: as above.
-            *value = unsafe { avx2::ln_fused(x) };
+            *value = unsafe { ln_fused(x) };
         }
         out
     }
@@ -269,96 +269,91 @@ fn ln_special(x: f64) -> f64 {
     }
 }
 
+/// [`ln`] with the processor's fused multiply-add.
 #[cfg(target_arch = "x86_64")]
-mod avx2 {
+#[target_feature(enable = "fma")]
+fn ln_fused(x: f64) -> f64 {
+    ln(x)
+}
+
+/// [`ln`] of four values, the same operations in each lane, both polynomials evaluated and
+/// one chosen per lane; special values (see [`ln_special`]) afterwards, lane by lane.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn ln4(x: [f64; 4]) -> [f64; 4] {
     use std::arch::x86_64::*;
-
-    use super::*;
-
-    /// [`ln`] with the processor's fused multiply-add.
-    #[target_feature(enable = "fma")]
-    pub fn ln_fused(x: f64) -> f64 {
-        ln(x)
-    }
-
-    /// [`ln`] of four values, the same operations in each lane, both polynomials evaluated and
-    /// one chosen per lane; special values (see [`ln_special`]) afterwards, lane by lane.
-    #[target_feature(enable = "avx2,fma")]
-    pub fn ln4(x: [f64; 4]) -> [f64; 4] {
-        let splat = |bits: u64| _mm256_set1_pd(f(bits));
-        let xv = _mm256_setr_pd(x[0], x[1], x[2], x[3]);
-        let ix = _mm256_castpd_si256(xv);
-        let tmp = _mm256_sub_epi64(ix, _mm256_set1_epi64x(OFFSET as i64));
-        let mut index = [0u64; 4];
-        // SAFETY: `index` holds four u64, 32 bytes.
-        unsafe { _mm256_storeu_si256(index.as_mut_ptr().cast(), _mm256_srli_epi64::<45>(tmp)) };
-        let entry = index.map(|i| TABLE[(i & 0x7f) as usize].map(f));
-        let inverse = _mm256_setr_pd(entry[0][0], entry[1][0], entry[2][0], entry[3][0]);
-        let log_c = _mm256_setr_pd(entry[0][1], entry[1][1], entry[2][1], entry[3][1]);
-        // `k` from its 12 bits, exactly: (k + 2048) + 1.5·2^52 as bits, less the same as a double.
-        let biased = _mm256_xor_si256(_mm256_srli_epi64::<52>(tmp), _mm256_set1_epi64x(0x800));
-        let magic = _mm256_add_epi64(biased, _mm256_set1_epi64x(0x4338000000000000));
-        let k = _mm256_sub_pd(_mm256_castsi256_pd(magic), splat(0x4338000000000800));
-        let exponent = _mm256_and_si256(tmp, _mm256_set1_epi64x(0xfff0000000000000u64 as i64));
-        let z = _mm256_castsi256_pd(_mm256_sub_epi64(ix, exponent));
-        let r = _mm256_fmadd_pd(z, inverse, _mm256_set1_pd(-1.0));
-        let w = _mm256_fmadd_pd(k, splat(LN2_HI), log_c);
-        let hi = _mm256_add_pd(r, w);
-        let lo = _mm256_fmadd_pd(k, splat(LN2_LO), _mm256_add_pd(_mm256_sub_pd(w, hi), r));
-        let r2 = _mm256_mul_pd(r, r);
-        let r3 = _mm256_mul_pd(r, r2);
-        let p = _mm256_fmadd_pd(
-            _mm256_fmadd_pd(r, splat(A[4]), splat(A[3])),
-            r2,
-            _mm256_fmadd_pd(r, splat(A[2]), splat(A[1])),
-        );
-        let away = _mm256_add_pd(_mm256_fmadd_pd(r3, p, _mm256_fmadd_pd(r2, splat(A[0]), lo)), hi);
-        let near = near_one(_mm256_sub_pd(xv, _mm256_set1_pd(1.0)));
-        let is_near = _mm256_and_pd(
-            _mm256_cmp_pd::<_CMP_GE_OQ>(xv, splat(NEAR_FROM)),
-            _mm256_cmp_pd::<_CMP_LT_OQ>(xv, splat(NEAR_TO)),
-        );
-        let value = _mm256_blendv_pd(away, near, is_near);
-        let one = _mm256_cmp_pd::<_CMP_EQ_OQ>(xv, _mm256_set1_pd(1.0));
-        let value = _mm256_blendv_pd(value, _mm256_setzero_pd(), one);
-        let normal = _mm256_and_pd(
-            _mm256_cmp_pd::<_CMP_GE_OQ>(xv, _mm256_set1_pd(f64::MIN_POSITIVE)),
-            _mm256_cmp_pd::<_CMP_LE_OQ>(xv, _mm256_set1_pd(f64::MAX)),
-        );
-        let mut out = [0.0; 4];
-        // SAFETY: `out` holds four f64, 32 bytes.
-        unsafe { _mm256_storeu_pd(out.as_mut_ptr(), value) };
-        let special = !_mm256_movemask_pd(normal) & 0xf;
-        if special != 0 {
-            for (l, value) in out.iter_mut().enumerate().filter(|(l, _)| special & (1 << l) != 0) {
-                *value = ln_special(x[l]);
-            }
+    let splat = |bits: u64| _mm256_set1_pd(f(bits));
+    let xv = _mm256_setr_pd(x[0], x[1], x[2], x[3]);
+    let ix = _mm256_castpd_si256(xv);
+    let tmp = _mm256_sub_epi64(ix, _mm256_set1_epi64x(OFFSET as i64));
+    let mut index = [0u64; 4];
+    // SAFETY: `index` holds four u64, 32 bytes.
+    unsafe { _mm256_storeu_si256(index.as_mut_ptr().cast(), _mm256_srli_epi64::<45>(tmp)) };
+    let entry = index.map(|i| TABLE[(i & 0x7f) as usize].map(f));
+    let inverse = _mm256_setr_pd(entry[0][0], entry[1][0], entry[2][0], entry[3][0]);
+    let log_c = _mm256_setr_pd(entry[0][1], entry[1][1], entry[2][1], entry[3][1]);
+    // `k` from its 12 bits, exactly: (k + 2048) + 1.5·2^52 as bits, less the same as a double.
+    let biased = _mm256_xor_si256(_mm256_srli_epi64::<52>(tmp), _mm256_set1_epi64x(0x800));
+    let magic = _mm256_add_epi64(biased, _mm256_set1_epi64x(0x4338000000000000));
+    let k = _mm256_sub_pd(_mm256_castsi256_pd(magic), splat(0x4338000000000800));
+    let exponent = _mm256_and_si256(tmp, _mm256_set1_epi64x(0xfff0000000000000u64 as i64));
+    let z = _mm256_castsi256_pd(_mm256_sub_epi64(ix, exponent));
+    let r = _mm256_fmadd_pd(z, inverse, _mm256_set1_pd(-1.0));
+    let w = _mm256_fmadd_pd(k, splat(LN2_HI), log_c);
+    let hi = _mm256_add_pd(r, w);
+    let lo = _mm256_fmadd_pd(k, splat(LN2_LO), _mm256_add_pd(_mm256_sub_pd(w, hi), r));
+    let r2 = _mm256_mul_pd(r, r);
+    let r3 = _mm256_mul_pd(r, r2);
+    let p =
+        _mm256_fmadd_pd(_mm256_fmadd_pd(r, splat(A[4]), splat(A[3])), r2, _mm256_fmadd_pd(r, splat(A[2]), splat(A[1])));
+    let away = _mm256_add_pd(_mm256_fmadd_pd(r3, p, _mm256_fmadd_pd(r2, splat(A[0]), lo)), hi);
+    let near = near_one(_mm256_sub_pd(xv, _mm256_set1_pd(1.0)));
+    let is_near = _mm256_and_pd(
+        _mm256_cmp_pd::<_CMP_GE_OQ>(xv, splat(NEAR_FROM)),
+        _mm256_cmp_pd::<_CMP_LT_OQ>(xv, splat(NEAR_TO)),
+    );
+    let value = _mm256_blendv_pd(away, near, is_near);
+    let one = _mm256_cmp_pd::<_CMP_EQ_OQ>(xv, _mm256_set1_pd(1.0));
+    let value = _mm256_blendv_pd(value, _mm256_setzero_pd(), one);
+    let normal = _mm256_and_pd(
+        _mm256_cmp_pd::<_CMP_GE_OQ>(xv, _mm256_set1_pd(f64::MIN_POSITIVE)),
+        _mm256_cmp_pd::<_CMP_LE_OQ>(xv, _mm256_set1_pd(f64::MAX)),
+    );
+    let mut out = [0.0; 4];
+    // SAFETY: `out` holds four f64, 32 bytes.
+    unsafe { _mm256_storeu_pd(out.as_mut_ptr(), value) };
+    let special = !_mm256_movemask_pd(normal) & 0xf;
+    if special != 0 {
+        for (l, value) in out.iter_mut().enumerate().filter(|(l, _)| special & (1 << l) != 0) {
+            *value = ln_special(x[l]);
         }
-        out
     }
+    out
+}
 
-    /// [`ln_near_one`] in four lanes.
-    #[target_feature(enable = "avx2,fma")]
-    fn near_one(r: __m256d) -> __m256d {
-        let splat = |bits: u64| _mm256_set1_pd(f(bits));
-        let r2 = _mm256_mul_pd(r, r);
-        let r3 = _mm256_mul_pd(r2, r);
-        let q1 = _mm256_fmadd_pd(r2, splat(B[3]), _mm256_fmadd_pd(r, splat(B[2]), splat(B[1])));
-        let q4 = _mm256_fmadd_pd(r2, splat(B[6]), _mm256_fmadd_pd(r, splat(B[5]), splat(B[4])));
-        let q7 = _mm256_fmadd_pd(
-            r3,
-            splat(B[10]),
-            _mm256_fmadd_pd(r2, splat(B[9]), _mm256_fmadd_pd(r, splat(B[8]), splat(B[7]))),
-        );
-        let q = _mm256_fmadd_pd(_mm256_fmadd_pd(q7, r3, q4), r3, q1);
-        let split = _mm256_set1_pd(SPLIT);
-        let r_hi = _mm256_fnmadd_pd(split, r, _mm256_fmadd_pd(r, split, r));
-        let r_lo = _mm256_sub_pd(r, r_hi);
-        let r_hi2 = _mm256_mul_pd(r_hi, r_hi);
-        let half = splat(B[0]);
-        let hi = _mm256_fmadd_pd(r_hi2, half, r);
-        let lo = _mm256_fmadd_pd(r_hi2, half, _mm256_sub_pd(r, hi));
-        let lo = _mm256_fmadd_pd(_mm256_mul_pd(half, r_lo), _mm256_add_pd(r_hi, r), lo);
-        _mm256_add_pd(hi, _mm256_fmadd_pd(q, r3, lo))
-    }
+/// [`ln_near_one`] in four lanes.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn near_one(r: std::arch::x86_64::__m256d) -> std::arch::x86_64::__m256d {
+    use std::arch::x86_64::*;
+    let splat = |bits: u64| _mm256_set1_pd(f(bits));
+    let r2 = _mm256_mul_pd(r, r);
+    let r3 = _mm256_mul_pd(r2, r);
+    let q1 = _mm256_fmadd_pd(r2, splat(B[3]), _mm256_fmadd_pd(r, splat(B[2]), splat(B[1])));
+    let q4 = _mm256_fmadd_pd(r2, splat(B[6]), _mm256_fmadd_pd(r, splat(B[5]), splat(B[4])));
+    let q7 = _mm256_fmadd_pd(
+        r3,
+        splat(B[10]),
+        _mm256_fmadd_pd(r2, splat(B[9]), _mm256_fmadd_pd(r, splat(B[8]), splat(B[7]))),
+    );
+    let q = _mm256_fmadd_pd(_mm256_fmadd_pd(q7, r3, q4), r3, q1);
+    let split = _mm256_set1_pd(SPLIT);
+    let r_hi = _mm256_fnmadd_pd(split, r, _mm256_fmadd_pd(r, split, r));
+    let r_lo = _mm256_sub_pd(r, r_hi);
+    let r_hi2 = _mm256_mul_pd(r_hi, r_hi);
+    let half = splat(B[0]);
+    let hi = _mm256_fmadd_pd(r_hi2, half, r);
+    let lo = _mm256_fmadd_pd(r_hi2, half, _mm256_sub_pd(r, hi));
+    let lo = _mm256_fmadd_pd(_mm256_mul_pd(half, r_lo), _mm256_add_pd(r_hi, r), lo);
+    _mm256_add_pd(hi, _mm256_fmadd_pd(q, r3, lo))
 }
