@@ -157,7 +157,7 @@ fn a_resume_refused_for_a_foreign_cut_or_flipped_recording_changes_no_file() {
     // A recording and a log cut before the checkpoint's step (300 s of 600 s). Both hold their
     // rows in time order, and the first 300 s (600 rows in stick) lie in the first tenth of the
     // recording's bytes (every step after the first slips at 420 s is a row); the log's first
-    // chunk, 512 rows, reaches past them. The refusal says "cut short" whether the cut leaves
+    // chunk, up to 2 048 rows, reaches past them. The refusal says "cut short" whether the cut leaves
     // the log's run header readable (which depends on when the wall-clock cadence flushed) or
     // not.
     for (suffix, fraction) in [(".rrd", 10), (".mcap", 8)] {

@@ -738,10 +738,11 @@ fn a_value_changed_inside_a_readable_recording_fails_check() {
 #[test]
 fn a_killed_run_leaves_its_recording_as_far_as_its_log() {
     // SIGKILL, which no handler sees (the out-of-memory killer, a batch system's time limit):
-    // both files hand what they buffer to the disk at least every second and every 512 rows
+    // both files hand what they buffer to the disk at least every second and every `ROWS` rows
     // (`slipfront::sink::cadence`), so the recording reads back as far as the MCAP log, within
-    // that cadence. With chunks of 4 096 rows, a run of Wilson's method killed after 5 s left its
-    // recording at 1 395 s of simulated time while its log held 1 726 s.
+    // that cadence: each holds every row up to its last hand-over, at most `ROWS` rows before
+    // the kill. Chunks filled by rows alone, with no clock, left a run of Wilson's method killed
+    // after 5 s with its recording at 1 395 s of simulated time while its log held 1 726 s.
     use std::os::unix::process::CommandExt;
     let out = scratch("killed");
     let log = out.join("log.mcap");
@@ -760,7 +761,8 @@ fn a_killed_run_leaves_its_recording_as_far_as_its_log() {
     let logged = slipfront::inspect::mcap::read(&log).unwrap().frames.len();
     println!("killed after 4 s: {rows} rows in the recording, {logged} in the log");
     assert!(rows > 1 && logged > 1, "rows: recording {rows}, log {logged}");
-    assert!(rows + 1024 >= logged, "the recording holds {rows} rows, the log {logged}");
+    let cadence = slipfront::sink::cadence::ROWS;
+    assert!(rows + cadence >= logged, "the recording holds {rows} rows, the log {logged}");
 }
 
 #[test]

@@ -1,8 +1,8 @@
 //! Compaction of a finished recording: each entity's consecutive chunks merged into few large
 //! ones.
 //!
-//! During a run the recording goes to the disk in small chunks, at least every second and every
-//! 512 rows ([`crate::sink::cadence`]), so that a killed run loses little. A viewer and a
+//! During a run the recording goes to the disk in chunks, at least every second and every
+//! 2 048 rows ([`crate::sink::cadence`]), so that a killed run loses little. A viewer and a
 //! dataset server read few large chunks faster than many small ones, so once the run has ended
 //! the file is rewritten with every entity's chunks concatenated up to [`MAX_ROWS`] rows,
 //! written beside it and renamed over it: at any moment the path holds either the file the
@@ -34,8 +34,8 @@ pub struct Compacted {
 }
 
 /// The most chunks a recording may hold and be left as written by [`compact_if_worthwhile`].
-/// The paper case's 1000 s holds about 480 (its 28 entities written every 512 rows), read as
-/// fast as one chunk per entity, and compacting it would cost a third of what writing it does;
+/// The paper case's 1000 s holds about 150 (its 28 entities written every 2 048 rows), and
+/// compacting it would cost a third of what writing it does;
 /// a small run that flushed every second of wall clock for an hour holds 100 000.
 pub const LEFT_AS_WRITTEN: u64 = 2048;
 

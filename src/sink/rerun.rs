@@ -6,7 +6,7 @@
 //! ([`crate::sink::blueprint`]).
 //!
 //! Rows are buffered and sent as columns (`send_columns` bypasses Rerun's batcher, so many
-//! steps go as one chunk), at least every second and every 512 rows ([`crate::sink::cadence`]).
+//! steps go as one chunk), at least every second and every 2 048 rows ([`crate::sink::cadence`]).
 //! While no segment slips only every `stick_every`-th step is recorded.
 
 use rerun::sink::SinkFlushError;
@@ -61,6 +61,9 @@ pub struct RerunSink {
     file_failure: Option<FileFailure>,
     /// The recording this one continues, for a resumed run.
     continuation: Option<Continuation>,
+    /// Whether the static header [`Sink::begin`] logged may still be on its way to the file
+    /// ([`RerunSink::header_written`]).
+    header_pending: bool,
 }
 
 impl RerunSink {
@@ -95,7 +98,21 @@ impl RerunSink {
             file,
             file_failure,
             continuation: None,
+            header_pending: false,
         }
+    }
+
+    /// Waits until the static header (run description, series styles, blueprint), which goes
+    /// through Rerun's batcher, is in the file, before the first chunk that bypasses the
+    /// batcher: the file then holds the header before any row, and a file cut early (an
+    /// interrupted run, a full disk) still has it. [`Sink::begin`] only starts that flush, so
+    /// that the header is encoded beside the first steps instead of before them; by the first
+    /// rows' hand-over it is written and the wait is short.
+    fn header_written(&mut self) -> Result<(), SinkError> {
+        if std::mem::take(&mut self.header_pending) {
+            flush(self.rec())?;
+        }
+        Ok(())
     }
 
     /// The recording file's first write error, if it had one ([`RecordingFile`]).
@@ -116,6 +133,7 @@ impl RerunSink {
     /// they are all there, and continues the series' digests over them.
     fn continue_recording(&mut self, memory: &RecordingMemory) -> Result<(), SinkError> {
         let Some(continuation) = self.continuation.clone() else { return Ok(()) };
+        self.header_written()?;
         let id = self.plan.recording_id.clone().unwrap_or_default();
         let through = memory.through as i64;
         let rec = self.rec.as_ref().expect("the stream lives until finish");
@@ -181,6 +199,7 @@ impl RerunSink {
         if self.steps.is_empty() {
             return Ok(());
         }
+        self.header_written()?;
         let columns = |steps: &mut Vec<i64>, times: &mut Vec<f64>| {
             [
                 TimeColumn::new_sequence(schema::STEP, std::mem::take(steps)),
@@ -291,10 +310,10 @@ impl Sink for RerunSink {
             profiles: front.as_ref().map_or_else(Vec::new, SlipFront::profile_entities),
         };
         blueprint::send(rec, &contents).map_err(rerun_error)?;
-        // The columns go to the file directly (`send_columns` bypasses the batcher): without a
-        // flush here, a fast run's first columns can reach the file before the run description,
-        // and a file cut early (an interrupted run, a full disk) would lack it.
-        flush(rec)?;
+        // The columns go to the file directly (`send_columns` bypasses the batcher): the header
+        // must reach the file before them ([`RerunSink::header_written`]).
+        rec.flush_async().map_err(rerun_error)?;
+        self.header_pending = true;
         self.slip_front = front;
         self.spacetime = spatial.then(|| SpaceTime::new(self.plan.t_end, layout.segments.len()));
         self.plan.spec.spatial = spatial;

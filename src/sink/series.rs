@@ -51,9 +51,10 @@ impl SeriesColumns {
             .map(|spec| Columns {
                 names: spec.series_names(),
                 digests: vec![SeriesDigest::default(); spec.sources.len()],
+                // Room for the most rows a hand-over holds: the buffer does not grow in the run.
+                values: Vec::with_capacity(spec.sources.len() * crate::sink::cadence::ROWS),
                 path: spec.path,
                 sources: spec.sources,
-                values: Vec::new(),
             })
             .collect();
         Ok(())
@@ -92,8 +93,11 @@ impl SeriesColumns {
         ];
         for entity in &mut self.entities {
             let width = entity.sources.len();
-            let values = std::mem::replace(&mut entity.values, Vec::with_capacity(width * rows));
-            let column = Scalars::new(values).columns(std::iter::repeat_n(width, rows)).map_err(|e| e.to_string())?;
+            // Rerun copies the values into its own array; the buffer is kept for the next rows.
+            let column = Scalars::new(entity.values.iter().copied())
+                .columns(std::iter::repeat_n(width, rows))
+                .map_err(|e| e.to_string())?;
+            entity.values.clear();
             rec.send_columns(entity.path.as_str(), times.clone(), column).map_err(|e| e.to_string())?;
         }
         Ok(())
