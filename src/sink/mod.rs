@@ -7,6 +7,7 @@ pub mod cadence;
 pub mod catalog;
 pub mod collected;
 pub mod geometry;
+pub mod heap;
 pub mod mcap;
 pub mod memory;
 pub mod open_at;

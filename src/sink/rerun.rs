@@ -495,6 +495,7 @@ pub fn open_stream(
     if sinks.is_empty() {
         return Ok(None);
     }
+    crate::sink::heap::keep_freed_blocks();
     let rec = builder.set_sinks(sinks).map_err(|e| format!("cannot open the recording: {e}"))?;
     Ok(Some(Stream { rec, file: path, file_failure }))
 }
