@@ -219,7 +219,11 @@ fn a_catalog_that_cannot_be_written_on_a_full_disk_keeps_what_it_held() {
     let error = write_catalog(&path, &whole).unwrap_err().0;
     assert!(error.contains("No space left on device"), "{error}");
     assert_eq!(std::fs::read_to_string(&path).unwrap(), header, "the catalog after the failed write");
-    // With room again, the same write gives the whole catalog.
+    // With room again, the same write gives the whole catalog. The filler is emptied before it
+    // is removed: a child that another test spawned while the filler was open may still hold a
+    // copy of its descriptor until it executes, and an unlinked file frees its blocks only when
+    // the last descriptor closes; emptied, its blocks are free at once.
+    std::fs::File::create(tiny.0.join("filler")).unwrap();
     std::fs::remove_file(tiny.0.join("filler")).unwrap();
     write_catalog(&path, &whole).unwrap();
     assert_eq!(std::fs::read_to_string(&path).unwrap(), whole);
