@@ -213,12 +213,11 @@ impl System {
 
     /// Adds the step from `old` to the current state (of length `dt`) to the ledger, if one is
     /// kept, and fails if the integrator has created more energy than `energy_tolerance`
-    /// allows.
+    /// allows; a failed step leaves the ledger as it was.
     pub(crate) fn account_energy(&mut self, old: &State, dt: f64) -> Result<(), StepError> {
-        if let Some(mut ledger) = self.ledger.take() {
+        if let Some(mut ledger) = self.ledger {
             ledger.add_step(&self.body, &self.contact, old, &self.state, dt);
             self.refresh_stored_energy(&mut ledger);
-            self.ledger = Some(ledger);
             if let Some(tolerance) = self.settings.energy_tolerance {
                 // Early on, measured against the contact's strength energy rather than the little
                 // work done so far.
@@ -228,6 +227,7 @@ impl System {
                     return Err(StepError::EnergyCreated { share, tolerance });
                 }
             }
+            self.ledger = Some(ledger);
         }
         Ok(())
     }

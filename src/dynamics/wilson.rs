@@ -134,7 +134,13 @@ impl Wilson {
         match self.try_step(system, dt) {
             Err(e) if depth < MAX_HALVINGS && e.cured_by_shorter_steps() => {
                 system.count_split();
-                system.two_halves(dt, |s, half| self.step_halving(s, half, depth + 1))
+                let before = system.snapshot();
+                let halves = system.two_halves(dt, |s, half| self.step_halving(s, half, depth + 1));
+                if halves.is_err() {
+                    // The first half may have succeeded: a failed step leaves the state as it was.
+                    system.restore(before);
+                }
+                halves
             }
             result => result,
         }
@@ -224,9 +230,13 @@ impl Wilson {
         let (mut next, du) = end_of_step(system, dt, acceleration_theta)?;
         let next_restarts = advance_contact(system, &mut next, &du, dt, restarts)?;
         let old = std::mem::replace(&mut system.state, next);
+        if let Err(e) = system.account_energy(&old, dt) {
+            system.state = old;
+            return Err(e);
+        }
         // Over the next τ = θΔt the slip is about θ times this step's.
         self.restarts = next_restarts;
-        system.account_energy(&old, dt)
+        Ok(())
     }
 }
 
