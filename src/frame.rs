@@ -15,7 +15,8 @@ pub mod drawing;
 /// What the sinks of a run need in each frame.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Needs {
-    /// Per-segment `R`, `R*`, `1/R*`, `f_n` (the catalog needs only traction, slip and rate).
+    /// Per-segment `R`, `R*` and `f_n`. Traction, slip, slip rate and `1/R*` are in every
+    /// frame: the catalog reads them.
     pub segment_state: bool,
     /// Contact-surface node displacements.
     pub surface_nodes: bool,

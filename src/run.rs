@@ -44,8 +44,8 @@ pub struct LoopOptions<'a> {
     /// Slip-rate threshold (m/s) and merge window (s) of the event catalog.
     pub slip_rate_threshold: f64,
     pub merge_within: f64,
-    /// What the caller needs in every frame beyond what the sinks need (e.g.
-    /// [`Needs::segment_state`], for `1/R*` at the onsets of the catalog's events).
+    /// What the caller needs in every frame beyond what the sinks need (the catalog's event
+    /// detector needs nothing more: every frame holds `1/R*` for its onsets).
     pub needs: Needs,
     /// Checkpoints to write, if any.
     pub checkpoints: Option<Checkpoints<'a>>,
@@ -158,8 +158,8 @@ impl Observers<'_, '_> {
 
     /// Closes the catalog and finishes every sink (all of them, even after one fails) with the
     /// last good step's frame: built again in full from `scene` if no sink wrote it, where the
-    /// scene still holds that step (a step that failed may have moved it: a Wilson step split
-    /// in halves whose second half failed), else the last frame a sink wrote.
+    /// scene still holds that step (Wilson's failed steps leave it as it was; an integrator
+    /// whose failed step moved it does not), else the last frame a sink wrote.
     fn finish(mut self, ending: Ending, scene: &dyn Scene) -> Result<Catalog, SinkError> {
         if let Some(light) = self.unwritten.take() {
             let full = scene.frame(self.needs.written, light.dt);
@@ -368,8 +368,9 @@ fn begin<'s, 'b>(
     // Asked after `begin`: a sink learns from the layout what it will read (an MCAP log's
     // node selection, say).
     let written = sinks.iter().fold(options.needs, |n, s| n.union(s.needs()));
-    // The segments' full state stays in every frame: the detector reads `1/R*` at onsets.
-    let every = Needs { segment_state: written.segment_state, ..options.needs };
+    // Every frame holds what the detector reads (each segment's traction, slip, rate and `1/R*`);
+    // the segments' full state only frames a sink writes.
+    let every = options.needs;
     let detector = EventDetector::new(layout.segments.len(), options.slip_rate_threshold, options.merge_within)
         .with_instantaneous_rates(layout.instantaneous_slip_rate)
         .with_contacts(layout.contacts.iter().map(|c| c.segments).collect());

@@ -40,8 +40,8 @@ pub struct SlipEvent {
     /// Total friction force at the onset and end (N/m, or Pa per unit area).
     pub friction_force_before: f64,
     pub friction_force_after: f64,
-    /// Segment degree of structure `1/R*` at the onset, when the frames carried it
-    /// ([`crate::frame::Needs::segment_state`]).
+    /// Segment degree of structure `1/R*` at the onset (`None` in a catalog read from a file
+    /// that does not hold it).
     pub structure_before: Option<f64>,
 }
 

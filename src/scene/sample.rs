@@ -4,7 +4,8 @@
 use crate::frame::SegmentSample;
 use crate::friction::{ContactState, FrictionParams};
 
-/// Averages the Gauss points `(weight, state, plastic slip rate)` into a segment sample.
+/// Averages the Gauss points `(weight, state, plastic slip rate)` into a segment sample: its
+/// traction, slip, slip rate and `1/R*`, and with `full` its `f_n`, `R` and `R*`.
 pub fn segment_sample(
     params: &FrictionParams,
     points: impl Iterator<Item = (f64, ContactState, f64)>,
@@ -17,11 +18,11 @@ pub fn segment_sample(
         sample.traction_t += weight * state.traction_t;
         sample.slip += weight * state.plastic_slip;
         sample.slip_rate += weight * rate;
+        sample.structure += weight * state.structure;
         if full {
             sample.traction_n += weight * state.traction_n;
             sample.sliding_ratio += weight * state.sliding_ratio(params);
             sample.r_star += weight * state.r_star();
-            sample.structure += weight * state.structure;
         }
     }
     let inv = 1.0 / total;

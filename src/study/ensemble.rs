@@ -17,7 +17,6 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use crate::case::Case;
 use crate::catalog::events::Catalog;
-use crate::frame::Needs;
 use crate::run::{LoopOptions, Outcome, run};
 use crate::scene::{self, RunError};
 
@@ -49,8 +48,7 @@ pub fn perturbed(case: &Case, index: usize, epsilon: f64) -> Case {
 pub fn catalog(case: &Case) -> Result<(Catalog, usize), RunError> {
     let mut scene = scene::build(case)?;
     let segments = scene.layout().segments.len();
-    let options =
-        LoopOptions { needs: Needs { segment_state: true, ..Needs::default() }, ..LoopOptions::for_case(case) };
+    let options = LoopOptions::for_case(case);
     match run(scene.as_mut(), &case.time, &mut [], options) {
         Outcome::Completed { catalog, .. } => Ok((catalog, segments)),
         Outcome::Failed { error, .. } => Err(error),

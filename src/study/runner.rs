@@ -16,7 +16,6 @@ use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
 use crate::cli::outputs::{self, Named};
-use crate::frame::Needs;
 use crate::record::schema::RecordingPlan;
 use crate::run::{LoopOptions, Outcome, run};
 use crate::scene;
@@ -238,11 +237,7 @@ fn run_member(
         let threshold = case.slip_rate_threshold();
         sinks.push(Box::new(StopRules::new(study.stop.clone(), threshold, &stop, interrupt, &fired)));
     }
-    let options = LoopOptions {
-        interrupt: if rules { Some(&stop) } else { interrupt },
-        needs: Needs { segment_state: true, ..Needs::default() },
-        ..LoopOptions::for_case(case)
-    };
+    let options = LoopOptions { interrupt: if rules { Some(&stop) } else { interrupt }, ..LoopOptions::for_case(case) };
     let outcome = match &failure {
         Some(_) => None,
         None => Some(run(scene.as_mut(), &case.time, &mut sinks, options)),
