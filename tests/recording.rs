@@ -816,6 +816,26 @@ fn check_names_the_layout_of_a_recording_from_an_older_slipfront() {
 }
 
 #[test]
+fn check_verifies_the_series_digests_of_this_slipfront_and_of_those_before() {
+    // Digests are 64-bit xxh3 now (16 hexadecimal digits); a recording written before holds
+    // 32-bit xxh32 ones (8 digits), which `check` still verifies against its rows.
+    let digest_widths = |path: &Path| -> Vec<usize> {
+        let recording = rrd::read(path).unwrap();
+        let ending: schema::RunEnding = toml::from_str(&recording.static_texts[schema::RUN_ENDING]).unwrap();
+        ending.digests.values().map(String::len).collect()
+    };
+    let before = Path::new(env!("CARGO_MANIFEST_DIR")).join("fuzz/regressions/rrd_read/ok-spring_block.rrd");
+    let out = scratch("digests");
+    let now = run_cli("spring_block", &["time.t_end=20"], &out);
+    for (path, width) in [(before.as_path(), 8), (now.as_path(), 16)] {
+        let widths = digest_widths(path);
+        assert!(!widths.is_empty() && widths.iter().all(|w| *w == width), "{}: {widths:?}", path.display());
+        let (code, text) = check_cli(path, None);
+        assert_eq!(code, 0, "{}: {text}", path.display());
+    }
+}
+
+#[test]
 fn the_official_sdk_reads_every_instance_and_the_run_properties() {
     // The paper case has ten segments and eleven surface nodes: multi-instance columns.
     let out = scratch("instances");

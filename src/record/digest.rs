@@ -4,32 +4,30 @@
 //! reported as damage rather than read as data. The footer's checksum covers only the footer,
 //! and Rerun's chunks carry no checksum of their own.
 
+use xxhash_rust::xxh3::Xxh3;
 use xxhash_rust::xxh32::Xxh32;
 
 /// Seed of every series digest.
 const SEED: u32 = 0x51f0_0001;
 
-/// The running digest of one series: `xxh32` over each row's step, its time in whole
+/// The running digest of one series: 64-bit `xxh3` over each row's step, its time in whole
 /// nanoseconds as the recording stores it ([`nanos`]), and the bits of its value, each as
-/// eight little-endian bytes, in the order the rows were written (by step).
+/// eight little-endian bytes, in the order the rows were written (by step). Written as 16
+/// hexadecimal digits; recordings written before it hold the 8 digits of a 32-bit `xxh32`
+/// over the same bytes, which [`SeriesDigest::matches`] still verifies.
 #[derive(Clone)]
-pub struct SeriesDigest(Xxh32);
+pub struct SeriesDigest(Xxh3);
 
 impl Default for SeriesDigest {
     fn default() -> Self {
-        Self(Xxh32::new(SEED))
+        Self(Xxh3::with_seed(u64::from(SEED)))
     }
 }
 
 impl SeriesDigest {
     /// Adds one row.
     pub fn add(&mut self, step: i64, seconds: f64, value: f64) {
-        // One update of the row's 24 bytes hashes what three of 8 would, at a third of the calls.
-        let mut row = [0u8; 24];
-        row[..8].copy_from_slice(&step.to_le_bytes());
-        row[8..16].copy_from_slice(&nanos(seconds).to_le_bytes());
-        row[16..].copy_from_slice(&value.to_bits().to_le_bytes());
-        self.0.update(&row);
+        self.0.update(&row(step, seconds, value));
     }
 
     /// Adds the rows `(steps[i], nanos[i], values(i))` in one update of the hash, the same
@@ -53,9 +51,9 @@ impl SeriesDigest {
         }
     }
 
-    /// The digest of the rows added so far, as 8 hexadecimal digits.
+    /// The digest of the rows added so far, as 16 hexadecimal digits.
     pub fn hex(&self) -> String {
-        format!("{:08x}", self.0.digest())
+        format!("{:016x}", self.0.digest())
     }
 
     /// The digest of a whole series.
@@ -66,6 +64,29 @@ impl SeriesDigest {
         }
         digest.hex()
     }
+
+    /// Whether a whole series has the digest `written`: 16 digits as [`SeriesDigest::of`]
+    /// gives them, or the 8 digits of the `xxh32` that recordings and checkpoints written
+    /// before it hold.
+    pub fn matches(steps: &[i64], seconds: &[f64], values: &[f64], written: &str) -> bool {
+        if written.len() != 8 {
+            return Self::of(steps, seconds, values) == written;
+        }
+        let mut digest = Xxh32::new(SEED);
+        for ((step, time), value) in steps.iter().zip(seconds).zip(values) {
+            digest.update(&row(*step, *time, *value));
+        }
+        format!("{:08x}", digest.digest()) == written
+    }
+}
+
+/// One row's bytes as the series digests hash them.
+fn row(step: i64, seconds: f64, value: f64) -> [u8; 24] {
+    let mut row = [0u8; 24];
+    row[..8].copy_from_slice(&step.to_le_bytes());
+    row[8..16].copy_from_slice(&nanos(seconds).to_le_bytes());
+    row[16..].copy_from_slice(&value.to_bits().to_le_bytes());
+    row
 }
 
 /// The running digest of one topic of an MCAP log: `xxh32` over each message's sequence
@@ -131,5 +152,25 @@ mod tests {
         // Times as read back (whole nanoseconds over 1e9) give the same digest.
         let read: Vec<f64> = times.iter().map(|t| nanos(*t) as f64 / 1e9).collect();
         assert_eq!(SeriesDigest::of(&steps, &read, &values), whole);
+        assert!(SeriesDigest::matches(&steps, &times, &values, &whole));
+        assert!(!SeriesDigest::matches(&steps, &times, &[1.0, -2.5, 3.5], &whole));
+    }
+
+    /// The 16 digits are XXH3-64 with the seed, as the reference implementation gives them for
+    /// the same bytes; the 8 digits of recordings written before are XXH32 of those bytes.
+    #[test]
+    fn digests_are_the_reference_hashes_of_the_rows() {
+        let (steps, times, values) = ([3_i64, 4], [0.5, 0.75], [1.5_f64, -0.0]);
+        let mut bytes = Vec::new();
+        for i in 0..2 {
+            bytes.extend_from_slice(&steps[i].to_le_bytes());
+            bytes.extend_from_slice(&((times[i] * 1e9) as i64).to_le_bytes());
+            bytes.extend_from_slice(&values[i].to_bits().to_le_bytes());
+        }
+        let xxh3 = xxhash_rust::xxh3::xxh3_64_with_seed(&bytes, u64::from(SEED));
+        assert_eq!(SeriesDigest::of(&steps, &times, &values), format!("{xxh3:016x}"));
+        let xxh32 = xxhash_rust::xxh32::xxh32(&bytes, SEED);
+        assert!(SeriesDigest::matches(&steps, &times, &values, &format!("{xxh32:08x}")));
+        assert!(!SeriesDigest::matches(&steps, &times, &values, &format!("{:08x}", xxh32 ^ 1)));
     }
 }
