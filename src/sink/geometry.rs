@@ -153,6 +153,13 @@ impl GeometryBuffer {
         }
     }
 
+    /// Drops the buffered rows, sending nothing (a measuring build's hand-over,
+    /// [`crate::sink::WITHOUT_RERUN`]).
+    pub fn discard(&mut self) {
+        self.entities.clear();
+        self.points = 0;
+    }
+
     /// Points buffered so far (the flush budget).
     pub fn points(&self) -> usize {
         self.points

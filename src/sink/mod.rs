@@ -20,6 +20,11 @@ pub mod spacetime;
 pub mod viewer;
 
 use std::fmt;
+
+/// Whether this is a measuring build whose recording stops at slipfront's own buffers: Rerun's
+/// stream is off and each hand-over drops the rows instead of sending them (the Cargo feature
+/// `measure-without-rerun`; [docs/performance.md](../../docs/performance.md)).
+pub const WITHOUT_RERUN: bool = cfg!(feature = "measure-without-rerun");
 use std::path::PathBuf;
 
 use crate::catalog::events::Catalog;

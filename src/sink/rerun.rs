@@ -200,6 +200,9 @@ impl RerunSink {
             return Ok(());
         }
         self.header_written()?;
+        if crate::sink::WITHOUT_RERUN {
+            return self.drop_columns();
+        }
         let columns = |steps: &mut Vec<i64>, times: &mut Vec<f64>| {
             [
                 TimeColumn::new_sequence(schema::STEP, std::mem::take(steps)),
@@ -217,6 +220,23 @@ impl RerunSink {
         for (entity, columns) in self.geometry.take().map_err(rerun_error)? {
             rec.send_columns(entity, view_times.clone(), columns).map_err(rerun_error)?;
         }
+        Ok(())
+    }
+
+    /// A measuring build's hand-over ([`crate::sink::WITHOUT_RERUN`]): the series' digests
+    /// continue as in [`Self::flush_columns`], and every buffered row is dropped.
+    fn drop_columns(&mut self) -> Result<(), SinkError> {
+        self.series.discard(&self.steps, &self.times);
+        for buffer in [&mut self.steps, &mut self.view_steps] {
+            buffer.clear();
+        }
+        for buffer in [&mut self.times, &mut self.view_times] {
+            buffer.clear();
+        }
+        if let Some(front) = &mut self.slip_front {
+            front.discard();
+        }
+        self.geometry.discard();
         Ok(())
     }
 
@@ -482,7 +502,8 @@ pub fn open_stream(
             Some(DetachedViewer::connect(GrpcSink::new(parsed), url)?)
         }
     };
-    let mut builder = rerun::RecordingStreamBuilder::new(schema::APP_ID).recording_name(name).enabled(true);
+    let mut builder =
+        rerun::RecordingStreamBuilder::new(schema::APP_ID).recording_name(name).enabled(!crate::sink::WITHOUT_RERUN);
     if let Some(id) = id {
         builder = builder.recording_id(id);
     }

@@ -191,6 +191,15 @@ impl SlipFront {
         }
     }
 
+    /// Drops the buffered rows, sending nothing (a measuring build's hand-over,
+    /// [`crate::sink::WITHOUT_RERUN`]).
+    pub fn discard(&mut self) {
+        self.bars.iter_mut().flatten().for_each(Vec::clear);
+        self.state_steps.clear();
+        self.state_times.clear();
+        self.states.clear();
+    }
+
     /// Sends the buffered rows: the profiles on the view frames' `times`, the state rows on
     /// their own.
     pub fn send(&mut self, rec: &RecordingStream, times: &[TimeColumn; 2]) -> Result<(), String> {
